@@ -1,0 +1,1 @@
+"""Converters between standard ROS 2 messages and the cores' numpy / dataclass values."""

@@ -1,0 +1,107 @@
+"""What every node of the graph shares: declaring validated parameters and the canonical main.
+
+This is the only module of the contract that imports rclpy at module level.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+
+import rclpy
+from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
+from rclpy.clock import Clock, ClockType
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+
+from door_contract.converters.diagnostics import Health, diagnostic_array
+from door_contract.errors import ParameterRangeError
+from door_contract.parameters import ParameterSpec, ParameterValue
+from door_contract.topics import TopicSpec, Topics
+
+
+def _descriptor(spec: ParameterSpec) -> ParameterDescriptor:
+    descriptor = ParameterDescriptor(
+        description=spec.description + (f" [{spec.unit}]" if spec.unit else ""),
+        additional_constraints=f"allowed: {spec.allowed()}",
+        read_only=True,
+    )
+    is_number = isinstance(spec.default, (int, float)) and not isinstance(spec.default, bool)
+    if is_number and spec.minimum is not None and spec.maximum is not None:
+        if isinstance(spec.default, int):
+            descriptor.integer_range = [IntegerRange(
+                from_value=int(spec.minimum), to_value=int(spec.maximum), step=0)]
+        else:
+            descriptor.floating_point_range = [FloatingPointRange(
+                from_value=float(spec.minimum), to_value=float(spec.maximum), step=0.0)]
+    return descriptor
+
+
+def _ros_default(value: ParameterValue):
+    return list(value) if isinstance(value, tuple) else value
+
+
+def declare_parameters(node: Node, specs: Iterable[ParameterSpec]) -> dict[str, ParameterValue]:
+    """Declare ``specs`` on ``node`` with descriptors and return their validated values.
+
+    Raises :class:`ParameterRangeError` naming the parameter and its allowed range when an
+    override (``--ros-args -p`` or ``--params-file``) has the wrong type or is out of range.
+    """
+    values = {}
+    for spec in specs:
+        try:
+            parameter = node.declare_parameter(spec.name, _ros_default(spec.default), _descriptor(spec))
+        except Exception as error:  # rclpy raises several types for bad overrides
+            raise ParameterRangeError(f"parameter '{spec.name}' is invalid ({error}); "
+                                      f"expected {spec.allowed()}") from None
+        values[spec.name] = spec.validate(parameter.value)
+    return values
+
+
+def run_node(node_factory: Callable[[], Node], args: list[str] | None = None) -> int:
+    """The canonical rclpy main: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
+
+    Returns the process exit code: 0 after a clean shutdown, 2 when a parameter is invalid.
+    """
+    rclpy.init(args=args)
+    node = None
+    try:
+        node = node_factory()
+        rclpy.spin(node)
+    except ParameterRangeError as error:
+        rclpy.logging.get_logger("door_task").fatal(str(error))
+        return 2
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        if node is not None:
+            node.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+def create_contract_publisher(node: Node, topic: TopicSpec):
+    """Publisher for a :class:`~door_contract.topics.TopicSpec` with its contract QoS."""
+    return node.create_publisher(topic.msg_class(), topic.name, topic.qos.to_profile())
+
+
+def create_contract_subscription(node: Node, topic: TopicSpec, callback: Callable):
+    """Subscription for a :class:`~door_contract.topics.TopicSpec` with its contract QoS."""
+    return node.create_subscription(topic.msg_class(), topic.name, callback, topic.qos.to_profile())
+
+
+class Heartbeat:
+    """Publishes the node's health on ``/diagnostics`` every ``period_s`` (wall clock)."""
+
+    def __init__(self, node: Node, period_s: float = 1.0) -> None:
+        self._node = node
+        self._publisher = create_contract_publisher(node, Topics.DIAGNOSTICS)
+        self.health, self.message, self.values = Health.OK, "ready", {}
+        self._timer = node.create_timer(period_s, self.publish, clock=Clock(clock_type=ClockType.STEADY_TIME))
+
+    def update(self, health: Health, message: str, **values: object) -> None:
+        self.health, self.message = health, message
+        self.values.update(values)
+
+    def publish(self) -> None:
+        self._publisher.publish(diagnostic_array(self._node.get_name(), self.health, self.message,
+                                                 self.values))

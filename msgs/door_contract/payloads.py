@@ -1,0 +1,111 @@
+"""JSON payloads carried in ``std_msgs/String`` between nodes (requests, outcomes, estimates).
+
+Every payload is a frozen dataclass; :func:`encode` / :func:`decode` convert it, and
+decoding rejects missing fields, unknown fields and wrong types with a
+:class:`~door_contract.errors.ContractError` — a malformed message never reaches a core.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+from enum import Enum
+from typing import Any, TypeVar, get_type_hints
+
+from door_contract.errors import ContractError, NonFiniteError
+
+Payload = TypeVar("Payload")
+
+
+class OutcomeStatus(str, Enum):
+    SUCCESS = "success"
+    FAILURE = "failure"
+    REJECTED = "rejected"  # refused before doing anything (bad input); nothing moved
+
+
+class ExecutionKind(str, Enum):
+    TRAJECTORY = "trajectory"
+    FOOTSTEPS = "footsteps"
+
+
+@dataclasses.dataclass(frozen=True)
+class ExecutionOutcome:
+    """Published by the sim bridge when a trajectory or footstep plan ends or is rejected.
+
+    ``request_id`` is the trajectory's / path's ``header.frame_id``-independent id: the
+    ``header.stamp`` in nanoseconds of the executed message, so the FSM can match it.
+    """
+
+    kind: ExecutionKind
+    request_id: int
+    status: OutcomeStatus
+    reason: str = ""
+    duration_s: float = 0.0
+
+
+@dataclasses.dataclass(frozen=True)
+class PlanningOutcome:
+    """Published by a planner for every request id: success (with figures) or the reason."""
+
+    request_id: int
+    status: OutcomeStatus
+    reason: str = ""
+    planning_time_s: float = 0.0
+    details: dict = dataclasses.field(default_factory=dict)
+
+
+def encode(payload: Any) -> str:
+    """JSON text of a payload dataclass (Enums by value)."""
+    return json.dumps(dataclasses.asdict(payload), default=_enum_value, allow_nan=False)
+
+
+def _enum_value(value: Any) -> Any:
+    if isinstance(value, Enum):
+        return value.value
+    raise TypeError(f"cannot encode {type(value).__name__}")
+
+
+def decode(payload_type: type[Payload], text: str) -> Payload:
+    """A ``payload_type`` instance from JSON, or :class:`ContractError` saying what is wrong."""
+    try:
+        document = json.loads(text)
+    except json.JSONDecodeError as error:
+        raise ContractError(f"{payload_type.__name__}: not JSON ({error})") from None
+    if not isinstance(document, dict):
+        raise ContractError(f"{payload_type.__name__}: expected a JSON object")
+    hints = get_type_hints(payload_type)
+    fields = {f.name: f for f in dataclasses.fields(payload_type)}
+    unknown = sorted(set(document) - set(fields))
+    if unknown:
+        raise ContractError(f"{payload_type.__name__}: unknown field(s) {', '.join(unknown)}")
+    values = {name: _field_value(payload_type.__name__, name, hints[name], document[name])
+              for name in fields if name in document}
+    try:
+        return payload_type(**values)
+    except TypeError as error:
+        raise ContractError(f"{payload_type.__name__}: {error}") from None
+
+
+def _field_value(owner: str, name: str, hint: Any, value: Any) -> Any:
+    if isinstance(hint, type) and issubclass(hint, Enum):
+        try:
+            return hint(value)
+        except ValueError:
+            allowed = ", ".join(str(m.value) for m in hint)
+            raise ContractError(f"{owner}.{name}: {value!r} is not one of {allowed}") from None
+    if hint is float:
+        if not isinstance(value, (int, float)) or isinstance(value, bool):
+            raise ContractError(f"{owner}.{name}: expected a number, got {value!r}")
+        if not math.isfinite(value):
+            raise NonFiniteError(f"{owner}.{name} is not finite")
+        return float(value)
+    if hint is int and (not isinstance(value, int) or isinstance(value, bool)):
+        raise ContractError(f"{owner}.{name}: expected an integer, got {value!r}")
+    if hint is str and not isinstance(value, str):
+        raise ContractError(f"{owner}.{name}: expected a string, got {value!r}")
+    if getattr(hint, "__origin__", None) is tuple or hint is tuple:
+        if not isinstance(value, list):
+            raise ContractError(f"{owner}.{name}: expected a list, got {value!r}")
+        return tuple(tuple(v) if isinstance(v, list) else v for v in value)
+    return value

@@ -1,0 +1,139 @@
+"""Every topic and service of the graph: name, type, QoS, frame and unit, defined once.
+
+Nodes, tests, the bag tools and the README table read these specs; nothing else spells a
+topic name. Structured requests and outcomes between nodes travel as JSON in
+``std_msgs/String`` (schemas in :mod:`door_contract.payloads`), so the graph needs
+standard messages only and a rosbag of a run stays readable.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+
+from door_contract.frames import Frame
+from door_contract.qos import CLOCK, EVENTS, LATCHED, SENSOR, QosSpec
+
+
+@dataclass(frozen=True)
+class TopicSpec:
+    """One topic of the contract."""
+
+    name: str
+    type_name: str  # ROS interface name, e.g. "sensor_msgs/msg/Image"
+    qos: QosSpec
+    publisher: str  # who publishes it
+    meaning: str
+    frame: str = ""
+    unit: str = ""
+
+    def msg_class(self) -> type:
+        """The message class, imported on first use (the contract itself stays import-light)."""
+        return _interface_class(self.type_name)
+
+
+@dataclass(frozen=True)
+class ServiceSpec:
+    """One service of the contract."""
+
+    name: str
+    type_name: str  # e.g. "std_srvs/srv/SetBool"
+    server: str
+    meaning: str
+
+    def srv_class(self) -> type:
+        return _interface_class(self.type_name)
+
+
+def _interface_class(type_name: str) -> type:
+    package, kind, name = type_name.split("/")
+    return getattr(importlib.import_module(f"{package}.{kind}"), name)
+
+
+class Topics:
+    """The topic table of DESIGN.md plus the developers' internal topics."""
+
+    CLOCK = TopicSpec("/clock", "rosgraph_msgs/msg/Clock", CLOCK, "sim_bridge",
+                      "simulation time; nodes run with use_sim_time", unit="s")
+    JOINT_STATES = TopicSpec("/joint_states", "sensor_msgs/msg/JointState", SENSOR, "sim_bridge",
+                             "all robot joints", unit="rad, rad/s")
+    ODOM = TopicSpec("/odom", "nav_msgs/msg/Odometry", SENSOR, "sim_bridge",
+                     "robot base pose", frame=Frame.ODOM.value, unit="m, rad")
+    COLOR_IMAGE = TopicSpec("/head_camera/color/image_raw", "sensor_msgs/msg/Image", SENSOR,
+                            "sim_bridge", "head camera colour image (rgb8)",
+                            frame=Frame.HEAD_CAMERA_OPTICAL.value)
+    COLOR_INFO = TopicSpec("/head_camera/color/camera_info", "sensor_msgs/msg/CameraInfo", SENSOR,
+                           "sim_bridge", "colour intrinsics", frame=Frame.HEAD_CAMERA_OPTICAL.value)
+    DEPTH_IMAGE = TopicSpec("/head_camera/depth/image_raw", "sensor_msgs/msg/Image", SENSOR,
+                            "sim_bridge", "depth registered to colour (32FC1)",
+                            frame=Frame.HEAD_CAMERA_OPTICAL.value, unit="m")
+    DEPTH_INFO = TopicSpec("/head_camera/depth/camera_info", "sensor_msgs/msg/CameraInfo", SENSOR,
+                           "sim_bridge", "depth intrinsics", frame=Frame.HEAD_CAMERA_OPTICAL.value)
+    DOOR_JOINT_STATES = TopicSpec("/sim/door_joint_states", "sensor_msgs/msg/JointState", SENSOR,
+                                  "sim_bridge", "ground-truth hinge and handle angles "
+                                  "(evaluation only)", unit="rad")
+    EXECUTION_OUTCOME = TopicSpec("/sim/execution_outcome", "std_msgs/msg/String", EVENTS,
+                                  "sim_bridge", "JSON ExecutionOutcome when a trajectory or "
+                                  "footstep plan finishes or is rejected")
+    ARM_TRAJECTORY = TopicSpec("/arm_controller/joint_trajectory",
+                               "trajectory_msgs/msg/JointTrajectory", EVENTS, "fsm_supervisor",
+                               "approved trajectory to execute", unit="rad, s")
+    FOOTSTEP_PLAN = TopicSpec("/footstep_plan", "nav_msgs/msg/Path", EVENTS, "fsm_supervisor",
+                              "approved footsteps to walk (even index = left foot, odd = right)",
+                              frame=Frame.ODOM.value, unit="m")
+    HANDLE_POSE = TopicSpec("/door/handle_pose", "geometry_msgs/msg/PoseStamped", EVENTS,
+                            "door_detector", "handle grasp point; x = door normal towards the "
+                            "robot, z up", frame=Frame.ODOM.value, unit="m")
+    DOOR_ESTIMATE = TopicSpec("/door/estimate", "std_msgs/msg/String", LATCHED, "door_detector",
+                              "JSON DoorEstimate: corners, normal, width, hinge side, confidence",
+                              frame=Frame.ODOM.value, unit="m")
+    DOOR_MARKERS = TopicSpec("/door/markers", "visualization_msgs/msg/MarkerArray", EVENTS,
+                             "door_detector", "door, handle and normal for RViz/Foxglove",
+                             frame=Frame.ODOM.value)
+    DETECTION_DEBUG_IMAGE = TopicSpec("/door_detector/debug_image", "sensor_msgs/msg/Image",
+                                      SENSOR, "door_detector", "colour image with overlays",
+                                      frame=Frame.HEAD_CAMERA_OPTICAL.value)
+    SCRIBBLE = TopicSpec("/operator/scribble", "geometry_msgs/msg/PolygonStamped", EVENTS,
+                         "operator", "pixel polygon on the handle: operator-aided detection",
+                         unit="px")
+    FOOTSTEP_REQUEST = TopicSpec("/footstep_planner/request", "std_msgs/msg/String", EVENTS,
+                                 "fsm_supervisor", "JSON FootstepRequest (id, goal)")
+    FOOTSTEP_PROPOSAL = TopicSpec("/footstep_planner/plan", "nav_msgs/msg/Path", EVENTS,
+                                  "footstep_planner", "planned footsteps awaiting approval",
+                                  frame=Frame.ODOM.value, unit="m")
+    FOOTSTEP_OUTCOME = TopicSpec("/footstep_planner/outcome", "std_msgs/msg/String", EVENTS,
+                                 "footstep_planner", "JSON PlanningOutcome for a request id")
+    FOOTSTEP_MARKERS = TopicSpec("/footstep_planner/markers", "visualization_msgs/msg/MarkerArray",
+                                 EVENTS, "footstep_planner", "footprints for RViz/Foxglove",
+                                 frame=Frame.ODOM.value)
+    MOTION_REQUEST = TopicSpec("/trajectory_optimizer/request", "std_msgs/msg/String", EVENTS,
+                               "fsm_supervisor", "JSON MotionRequest (id, motion, backend)")
+    MOTION_PROPOSAL = TopicSpec("/trajectory_optimizer/trajectory",
+                                "trajectory_msgs/msg/JointTrajectory", EVENTS,
+                                "trajectory_optimizer", "optimised trajectory awaiting approval",
+                                unit="rad, s")
+    MOTION_OUTCOME = TopicSpec("/trajectory_optimizer/outcome", "std_msgs/msg/String", EVENTS,
+                               "trajectory_optimizer", "JSON PlanningOutcome for a request id")
+    TASK_STATE = TopicSpec("/door_task/state", "std_msgs/msg/String", LATCHED, "fsm_supervisor",
+                           "current FSM state")
+    APPROVAL_REQUEST = TopicSpec("/door_task/approval_request", "std_msgs/msg/String", LATCHED,
+                                 "fsm_supervisor", "what the FSM proposes and waits for")
+    OPERATOR = TopicSpec("/door_task/operator", "std_msgs/msg/String", EVENTS, "operator",
+                         "approve, reject, repeat, pause, resume, abort, manual")
+    DIAGNOSTICS = TopicSpec("/diagnostics", "diagnostic_msgs/msg/DiagnosticArray", EVENTS, "all",
+                            "health, timings, outcomes")
+
+    @classmethod
+    def all(cls) -> tuple[TopicSpec, ...]:
+        return tuple(v for v in vars(cls).values() if isinstance(v, TopicSpec))
+
+
+class Services:
+    LEFT_GRASP = ServiceSpec("/left_hand/grasp", "std_srvs/srv/SetBool", "sim_bridge",
+                             "close (true) / open (false) the left hand; attaches within 2 cm")
+    RIGHT_GRASP = ServiceSpec("/right_hand/grasp", "std_srvs/srv/SetBool", "sim_bridge",
+                              "close (true) / open (false) the right hand; attaches within 2 cm")
+
+    @classmethod
+    def all(cls) -> tuple[ServiceSpec, ...]:
+        return tuple(v for v in vars(cls).values() if isinstance(v, ServiceSpec))

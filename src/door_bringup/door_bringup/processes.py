@@ -1,0 +1,76 @@
+"""Starts, watches and stops the graph's node processes (what ``ros2 launch`` would do).
+
+ROS-free: each node is a child process in its own session, so a Ctrl-C in the terminal
+reaches only this supervisor, which then stops the children in order: SIGINT (rclpy's
+clean shutdown), then SIGTERM, then SIGKILL after the grace periods.
+"""
+
+from __future__ import annotations
+
+import signal
+import subprocess
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from door_bringup.graph_spec import NodeLaunch
+from door_bringup.workspace import Workspace
+
+
+@dataclass
+class NodeProcess:
+    launch: NodeLaunch
+    process: subprocess.Popen
+    log_path: Path | None = None
+
+    @property
+    def exit_code(self) -> int | None:
+        return self.process.poll()
+
+
+@dataclass
+class ProcessSupervisor:
+    workspace: Workspace
+    log_dir: Path | None = None
+    children: list[NodeProcess] = field(default_factory=list)
+
+    def start(self, launch: NodeLaunch, ros_args: Sequence[str] = (),
+              env: dict[str, str] | None = None) -> NodeProcess:
+        """Start ``launch`` as ``<exe> --ros-args --params-file params/<node>.yaml <ros_args>``."""
+        command = [str(self.workspace.executable(launch.package, launch.executable)), "--ros-args"]
+        params_file = self.workspace.params_file(launch.node_name)
+        if params_file.is_file():
+            command += ["--params-file", str(params_file)]
+        command += list(ros_args)
+        log_path = None
+        output = None
+        if self.log_dir is not None:
+            self.log_dir.mkdir(parents=True, exist_ok=True)
+            log_path = self.log_dir / f"{launch.node_name}.log"
+            output = log_path.open("w")
+        process = subprocess.Popen(command, env=self.workspace.environment(env), stdout=output,
+                                   stderr=subprocess.STDOUT if output else None, start_new_session=True)
+        child = NodeProcess(launch, process, log_path)
+        self.children.append(child)
+        return child
+
+    def exited(self) -> list[NodeProcess]:
+        """Children that have stopped on their own (crash, kill, bad parameter)."""
+        return [child for child in self.children if child.exit_code is not None]
+
+    def stop(self, grace_s: float = 5.0) -> dict[str, int]:
+        """Stop every child (SIGINT → SIGTERM → SIGKILL); returns exit codes by node name."""
+        for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
+            running = [c for c in self.children if c.exit_code is None]
+            for child in running:
+                child.process.send_signal(sig)
+            deadline = time.monotonic() + grace_s
+            for child in running:
+                try:
+                    child.process.wait(timeout=max(0.0, deadline - time.monotonic()))
+                except subprocess.TimeoutExpired:
+                    pass
+            if all(c.exit_code is not None for c in self.children):
+                break
+        return {c.launch.node_name: c.process.wait() for c in self.children}

@@ -1,0 +1,74 @@
+"""The colcon workspace as ``ros2 run`` sees it: ament index, executables, environment.
+
+ros2cli is not on PyPI, so this reproduces the part of ``ros2 run`` the project needs: an
+executable is ``<prefix>/lib/<package>/<executable>`` of the first prefix in
+``AMENT_PREFIX_PATH`` whose ament index lists the package.
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+
+
+class WorkspaceError(RuntimeError):
+    """The workspace is not built, or a package/executable is not in it."""
+
+
+def repository_root() -> Path:
+    """This checkout (src/door_bringup/door_bringup → three levels up), or $DOOR_WORKSPACE."""
+    return Path(os.environ.get("DOOR_WORKSPACE", Path(__file__).resolve().parents[3]))
+
+
+@dataclass(frozen=True)
+class Workspace:
+    root: Path
+
+    @property
+    def install(self) -> Path:
+        return self.root / "ros_ws" / "install"
+
+    @property
+    def params(self) -> Path:
+        return self.root / "params"
+
+    def package_prefixes(self) -> list[Path]:
+        """Install prefixes of the built packages (colcon's isolated layout)."""
+        if not self.install.is_dir():
+            raise WorkspaceError(f"{self.install} does not exist: run the README's set-up (colcon build)")
+        return sorted(p for p in self.install.iterdir()
+                      if (p / "share" / "ament_index" / "resource_index" / "packages" / p.name).is_file())
+
+    def executable(self, package: str, executable: str) -> Path:
+        """What ``ros2 run <package> <executable>`` would start."""
+        for prefix in self.package_prefixes():
+            if prefix.name == package:
+                path = prefix / "lib" / package / executable
+                if path.is_file():
+                    return path
+                raise WorkspaceError(f"package {package!r} has no executable {executable!r}")
+        raise WorkspaceError(f"package {package!r} not found in {self.install}")
+
+    def environment(self, base: Mapping[str, str] | None = None) -> dict[str, str]:
+        """``base`` (default: os.environ) plus what sourcing ``install/setup.sh`` would set.
+
+        ``ROS_AUTOMATIC_DISCOVERY_RANGE`` defaults to LOCALHOST: no DDS traffic leaves the
+        machine unless the user asks for it.
+        """
+        env = dict(os.environ if base is None else base)
+        prefixes = self.package_prefixes()
+        site = f"lib/python{sys.version_info.major}.{sys.version_info.minor}/site-packages"
+        python_paths = [str(p / site) for p in prefixes]
+        env["PYTHONPATH"] = os.pathsep.join(python_paths + [v for v in [env.get("PYTHONPATH")] if v])
+        env["AMENT_PREFIX_PATH"] = os.pathsep.join([str(p) for p in prefixes] + [sys.prefix])
+        env.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
+        env.setdefault("DOOR_PARAMS_DIR", str(self.params))
+        env.setdefault("DOOR_SHARED_DATA", str(self.root.parent / "shared" / "data"))
+        env.setdefault("PYTHONUNBUFFERED", "1")
+        return env
+
+    def params_file(self, node_name: str) -> Path:
+        return self.params / f"{node_name}.yaml"

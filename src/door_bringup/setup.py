@@ -1,0 +1,31 @@
+"""ament_python package door_bringup: Runs the graph without ros2 launch, records and plays rosbag2 bags, operator console."""
+
+from glob import glob
+
+from setuptools import find_packages, setup
+
+PACKAGE = "door_bringup"
+
+setup(
+    name=PACKAGE,
+    version="0.1.0",
+    packages=find_packages(exclude=["test", "tests"]),
+    data_files=[
+        ("share/ament_index/resource_index/packages", [f"resource/{PACKAGE}"]),
+        (f"share/{PACKAGE}", ["package.xml"]),
+        (f"share/{PACKAGE}/launch", glob("launch/*.launch.py")),
+        # The repository's params/ (node parameters and robot profiles), for installed use.
+        (f"share/{PACKAGE}/params", sorted(glob("../../params/*.yaml"))),
+    ],
+    install_requires=["setuptools"],
+    zip_safe=True,
+    maintainer="Door traversal team",
+    maintainer_email="door-traversal@example.org",
+    description="Runs the graph without ros2 launch, records and plays rosbag2 bags, operator console.",
+    license="Apache-2.0",
+    entry_points={
+        "console_scripts": [
+            "door_graph = door_bringup.graph:main",
+        ],
+    },
+)

@@ -1,0 +1,1 @@
+"""Robot profiles and Pinocchio kinematics of the door-traversal humanoids (ROS-free)."""

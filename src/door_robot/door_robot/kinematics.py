@@ -1,0 +1,125 @@
+"""Forward kinematics, frame Jacobians and centre of mass through Pinocchio.
+
+The model is the profile's URDF with a **fixed base** at ``profile.base_frame`` (quasi-static
+manipulation: the feet do not move while the arm does, seed 001 Sec. IV). Poses are 4×4
+transforms in the base frame; pass ``base_pose`` (base in world/odom) to get world
+quantities. Jacobians are ``LOCAL_WORLD_ALIGNED``: rows (v_x, v_y, v_z, ω_x, ω_y, ω_z) of the
+frame origin expressed in the base axes, so that for a small joint step δq the frame moves
+by J δq (used by Q3 and the Cartesian constraints of seed 001 eq. 5).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import pinocchio as pin
+
+from door_robot.errors import RobotModelError
+from door_robot.profile import RobotProfile, Side
+
+
+class RobotKinematics:
+    """Kinematics of one robot profile; owns its Pinocchio model and data (not thread-safe)."""
+
+    def __init__(self, profile: RobotProfile) -> None:
+        self.profile = profile
+        self.model = pin.buildModelFromUrdf(str(profile.urdf_path))
+        if self.model.nq != self.model.nv:
+            raise RobotModelError(f"{profile.name}: continuous joints are not supported "
+                                  f"(nq={self.model.nq}, nv={self.model.nv})")
+        for side, arm in profile.arms.items():
+            self._add_tcp_frame(profile.tcp_frame(side), arm.tcp_parent_frame, arm.grasp_offset)
+        self.data = self.model.createData()
+        self.joint_names: tuple[str, ...] = tuple(self.model.names[1:])
+        self._index = {name: self.model.joints[i].idx_q for i, name in enumerate(self.model.names) if i}
+        self.lower_limits = np.array(self.model.lowerPositionLimit)
+        self.upper_limits = np.array(self.model.upperPositionLimit)
+        self.velocity_limits = np.array(self.model.velocityLimit)
+        self.nominal_q = self.configuration(profile.nominal_posture)
+        self._check_profile_names()
+
+    def _add_tcp_frame(self, name: str, parent: str, offset: Sequence[float]) -> None:
+        if not self.model.existFrame(parent):
+            raise RobotModelError(f"{self.profile.name}: unknown TCP parent frame {parent!r}")
+        parent_frame = self.model.frames[self.model.getFrameId(parent)]
+        placement = parent_frame.placement * pin.SE3(np.eye(3), np.asarray(offset, dtype=float))
+        self.model.addFrame(pin.Frame(name, parent_frame.parentJoint, self.model.getFrameId(parent),
+                                      placement, pin.FrameType.OP_FRAME))
+
+    def _check_profile_names(self) -> None:
+        for arm in self.profile.arms.values():
+            self.joint_indices(arm.joints)
+        for frame in (self.profile.head_camera_frame, *self.profile.feet.values()):
+            self.frame_id(frame)
+
+    # ---------------------------------------------------------------- names and indices
+    def joint_indices(self, joints: Sequence[str]) -> np.ndarray:
+        """Indices in q of ``joints``; :class:`RobotModelError` names an unknown joint."""
+        try:
+            return np.array([self._index[name] for name in joints], dtype=int)
+        except KeyError as error:
+            raise RobotModelError(f"{self.profile.name} has no joint {error.args[0]!r}") from None
+
+    def frame_id(self, frame: str) -> int:
+        if not self.model.existFrame(frame):
+            raise RobotModelError(f"{self.profile.name} has no frame {frame!r}")
+        return self.model.getFrameId(frame)
+
+    def arm_indices(self, side: Side) -> np.ndarray:
+        return self.joint_indices(self.profile.arm(side).joints)
+
+    def configuration(self, positions: Mapping[str, float], base: np.ndarray | None = None) -> np.ndarray:
+        """q with ``positions`` set by name over ``base`` (default: neutral), NaN rejected."""
+        q = pin.neutral(self.model) if base is None else np.array(base, dtype=float)
+        indices = self.joint_indices(list(positions))
+        values = np.fromiter(positions.values(), float, len(positions))
+        if not np.all(np.isfinite(values)):
+            raise RobotModelError("joint positions contain NaN or infinity")
+        q[indices] = values
+        return q
+
+    def within_limits(self, q: np.ndarray, tolerance: float = 1e-9) -> bool:
+        return bool(np.all(q >= self.lower_limits - tolerance) and np.all(q <= self.upper_limits + tolerance))
+
+    # ---------------------------------------------------------------- single configuration
+    def frame_pose(self, q: np.ndarray, frame: str) -> np.ndarray:
+        """4×4 pose of ``frame`` in the base frame."""
+        frame_id = self.frame_id(frame)
+        pin.forwardKinematics(self.model, self.data, q)
+        return pin.updateFramePlacement(self.model, self.data, frame_id).homogeneous.copy()
+
+    def frame_jacobian(self, q: np.ndarray, frame: str) -> np.ndarray:
+        """6×nq Jacobian (linear rows first) of ``frame``, LOCAL_WORLD_ALIGNED."""
+        return pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame),
+                                        pin.ReferenceFrame.LOCAL_WORLD_ALIGNED).copy()
+
+    def center_of_mass(self, q: np.ndarray) -> np.ndarray:
+        """Whole-body centre of mass (m, base frame): c = Σ mᵢ cᵢ / Σ mᵢ."""
+        return pin.centerOfMass(self.model, self.data, q).copy()
+
+    def com_jacobian(self, q: np.ndarray) -> np.ndarray:
+        """3×nq Jacobian of the centre of mass, ∂c/∂q."""
+        return pin.jacobianCenterOfMass(self.model, self.data, q).copy()
+
+    # ---------------------------------------------------------------- batched over waypoints
+    def frame_poses(self, trajectory: np.ndarray, frame: str) -> np.ndarray:
+        """(T, 4, 4) poses of ``frame`` along a (T, nq) trajectory."""
+        return np.stack([self.frame_pose(q, frame) for q in np.atleast_2d(trajectory)])
+
+    def frame_jacobians(self, trajectory: np.ndarray, frame: str) -> np.ndarray:
+        """(T, 6, nq) Jacobians of ``frame`` along a trajectory."""
+        return np.stack([self.frame_jacobian(q, frame) for q in np.atleast_2d(trajectory)])
+
+    def centers_of_mass(self, trajectory: np.ndarray) -> np.ndarray:
+        """(T, 3) centres of mass along a trajectory."""
+        return np.stack([self.center_of_mass(q) for q in np.atleast_2d(trajectory)])
+
+    def com_jacobians(self, trajectory: np.ndarray) -> np.ndarray:
+        """(T, 3, nq) centre-of-mass Jacobians along a trajectory."""
+        return np.stack([self.com_jacobian(q) for q in np.atleast_2d(trajectory)])
+
+
+def to_world(base_pose: np.ndarray, pose_in_base: np.ndarray) -> np.ndarray:
+    """World pose of a base-frame pose (or (T,4,4) stack) given the base pose in the world."""
+    return np.asarray(base_pose) @ pose_in_base

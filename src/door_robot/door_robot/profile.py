@@ -1,0 +1,132 @@
+"""Robot profiles: what the door task needs to know about a humanoid, read from YAML.
+
+A profile names the URDF, the arm chains (torso + arm joints per side, as DESIGN.md
+requires: the 7-DOF arm alone could not reach most handles), the hand's tool-centre-point
+(TCP) frame with its grasp offset, the head camera, the feet, the nominal posture and the
+walking limits. Joint limits are read from the URDF itself (:mod:`door_robot.kinematics`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from enum import Enum
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from door_robot.errors import RobotModelError
+from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
+
+
+class Side(str, Enum):
+    LEFT = "left"
+    RIGHT = "right"
+
+    @property
+    def other(self) -> Side:
+        return Side.RIGHT if self is Side.LEFT else Side.LEFT
+
+
+@dataclass(frozen=True)
+class ArmChain:
+    """The joints that move one hand (torso first), its TCP parent frame and grasp offset."""
+
+    joints: tuple[str, ...]
+    tcp_parent_frame: str
+    grasp_offset: tuple[float, float, float]  # m, TCP in the parent frame
+    gripper_joint: str | None = None
+
+
+@dataclass(frozen=True)
+class WalkingLimits:
+    """Footstep limits of the robot (seed 001 Sec. II: quasi-static walking)."""
+
+    max_stride: float  # m forward per step
+    max_side_step: float  # m lateral per step
+    max_turn: float  # rad per step
+    foot_separation: float  # m between sole centres, standing
+    foot_length: float  # m
+    foot_width: float  # m
+    body_width: float  # m, shoulder to shoulder with arms tucked
+    body_depth: float  # m
+
+
+@dataclass(frozen=True)
+class RobotProfile:
+    name: str
+    urdf_path: Path
+    base_frame: str
+    base_height: float  # m, base frame above the sole plane in the nominal posture
+    arms: dict  # Side -> ArmChain
+    head_camera_frame: str
+    feet: dict  # Side -> sole frame name
+    nominal_posture: dict  # joint -> rad
+    walking: WalkingLimits
+
+    def arm(self, side: Side) -> ArmChain:
+        return self.arms[side]
+
+    def tcp_frame(self, side: Side) -> str:
+        """Name of the TCP frame the kinematics adds for ``side``."""
+        return f"{side.value}_tcp"
+
+
+def resolve_urdf(source: dict[str, str]) -> Path:
+    """A URDF path from ``{package: example-robot-data, path: …}`` or ``{shared_data: …}``."""
+    if "package" in source:
+        path = cmeel_share_dir() / source["package"] / source["path"]
+    elif "shared_data" in source:
+        path = shared_data_dir() / source["shared_data"]
+    elif "file" in source:
+        path = Path(source["file"])
+    else:
+        raise RobotModelError(f"urdf source needs 'package'+'path', 'shared_data' or 'file': {source}")
+    if not path.is_file():
+        raise RobotModelError(f"URDF not found: {path}")
+    return path
+
+
+def profile_path(name_or_path: str) -> Path:
+    """``robot_<name>.yaml`` in the params directory, or an explicit file path."""
+    candidate = Path(name_or_path)
+    if candidate.suffix in (".yaml", ".yml"):
+        if candidate.is_file():
+            return candidate
+        candidate = params_dir() / candidate.name
+    else:
+        candidate = params_dir() / f"robot_{name_or_path}.yaml"
+    if not candidate.is_file():
+        raise RobotModelError(f"robot profile not found: {candidate}")
+    return candidate
+
+
+def load_profile(name_or_path: str = "talos") -> RobotProfile:
+    """Read and validate a robot profile (``talos``, ``atlas_v4``, ``drc_hubo`` or a path)."""
+    document = yaml.safe_load(profile_path(name_or_path).read_text())
+    try:
+        return _profile_from_document(document)
+    except (KeyError, TypeError) as error:
+        raise RobotModelError(f"robot profile {name_or_path!r} is incomplete: {error}") from None
+
+
+def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
+    arms = {Side(side): ArmChain(tuple(arm["joints"]), arm["tcp_parent_frame"],
+                                 tuple(float(v) for v in arm["grasp_offset"]),
+                                 arm.get("gripper_joint"))
+            for side, arm in document["arms"].items()}
+    posture = {name: float(value) for name, value in document["nominal_posture"].items()}
+    if not all(math.isfinite(v) for v in posture.values()):
+        raise RobotModelError("nominal posture contains NaN or infinity")
+    return RobotProfile(
+        name=document["name"],
+        urdf_path=resolve_urdf(document["urdf"]),
+        base_frame=document["base_frame"],
+        base_height=float(document["base_height"]),
+        arms=arms,
+        head_camera_frame=document["head_camera_frame"],
+        feet={Side(side): frame for side, frame in document["feet"].items()},
+        nominal_posture=posture,
+        walking=WalkingLimits(**{k: float(v) for k, v in document["walking"].items()}),
+    )

@@ -1,0 +1,25 @@
+"""ament_python package door_robot: Robot profiles (TALOS, Atlas v4, DRC-HUBO) and Pinocchio kinematics; ROS-free."""
+
+from setuptools import find_packages, setup
+
+PACKAGE = "door_robot"
+
+setup(
+    name=PACKAGE,
+    version="0.1.0",
+    packages=find_packages(exclude=["test", "tests"]),
+    data_files=[
+        ("share/ament_index/resource_index/packages", [f"resource/{PACKAGE}"]),
+        (f"share/{PACKAGE}", ["package.xml"]),
+    ],
+    install_requires=["setuptools"],
+    zip_safe=True,
+    maintainer="Door traversal team",
+    maintainer_email="door-traversal@example.org",
+    description="Robot profiles (TALOS, Atlas v4, DRC-HUBO) and Pinocchio kinematics; ROS-free.",
+    license="Apache-2.0",
+    entry_points={
+        "console_scripts": [
+        ],
+    },
+)

@@ -1,0 +1,58 @@
+"""Parameter specs: validation messages, and params/*.yaml equal to the declared defaults."""
+
+import math
+
+import pytest
+
+from door_bringup.graph_spec import GRAPH
+from door_contract.errors import ParameterRangeError
+from door_contract.parameters import ParameterSpec, defaults, read_params_file, validate_all
+from door_detection.parameters import DETECTOR_PARAMETERS
+from door_fsm.parameters import SUPERVISOR_PARAMETERS
+from door_sim_bridge.parameters import BRIDGE_PARAMETERS
+from door_trajopt.parameters import OPTIMIZER_PARAMETERS
+from footstep_planner.parameters import PLANNER_PARAMETERS
+
+SPECS_BY_NODE = {
+    "door_detector": DETECTOR_PARAMETERS,
+    "footstep_planner": PLANNER_PARAMETERS,
+    "trajectory_optimizer": OPTIMIZER_PARAMETERS,
+    "fsm_supervisor": SUPERVISOR_PARAMETERS,
+    "sim_bridge": BRIDGE_PARAMETERS,
+}
+RATE = ParameterSpec("rate", 10.0, "a rate", unit="Hz", minimum=1.0, maximum=100.0)
+
+
+def test_every_node_has_a_params_file_equal_to_its_specs(workspace):
+    assert set(SPECS_BY_NODE) == {launch.node_name for launch in GRAPH}
+    for node_name, specs in SPECS_BY_NODE.items():
+        in_file = read_params_file(workspace.params_file(node_name), node_name)
+        assert validate_all(specs, in_file) == defaults(specs), node_name
+
+
+def test_every_parameter_is_documented():
+    for specs in SPECS_BY_NODE.values():
+        for spec in specs:
+            assert len(spec.description) > 10, spec.name
+            assert spec.validate(spec.default) == spec.default
+
+
+@pytest.mark.parametrize("value", [0.5, 101.0, math.nan, "fast", True])
+def test_bad_value_names_parameter_and_range(value):
+    with pytest.raises(ParameterRangeError, match=r"'rate'.*\[1, 100\] Hz"):
+        RATE.validate(value)
+
+
+def test_integers_are_accepted_for_floats_but_not_the_reverse():
+    assert RATE.validate(20) == 20.0
+    frames = ParameterSpec("frames", 10, "frames voted", minimum=1, maximum=100)
+    with pytest.raises(ParameterRangeError, match="an integer"):
+        frames.validate(2.5)
+
+
+def test_choices_and_unknown_names():
+    autonomy = ParameterSpec("autonomy", "supervised", "level", choices=("full", "supervised"))
+    with pytest.raises(ParameterRangeError, match="one of 'full', 'supervised'"):
+        autonomy.validate("yolo")
+    with pytest.raises(ParameterRangeError, match="unknown parameter"):
+        validate_all([autonomy], {"autonmy": "full"})

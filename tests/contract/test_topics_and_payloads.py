@@ -1,0 +1,68 @@
+"""The topic table is complete, unique and resolvable; JSON payloads reject bad input."""
+
+import pytest
+
+from door_contract.errors import ContractError, NonFiniteError
+from door_contract.payloads import (ExecutionKind, ExecutionOutcome, OutcomeStatus, PlanningOutcome,
+                                    decode, encode)
+from door_contract.qos import Durability
+from door_contract.topics import Services, Topics
+
+DESIGN_TOPICS = {
+    "/clock", "/joint_states", "/odom", "/head_camera/color/image_raw",
+    "/head_camera/color/camera_info", "/head_camera/depth/image_raw",
+    "/head_camera/depth/camera_info", "/sim/door_joint_states", "/arm_controller/joint_trajectory",
+    "/footstep_plan", "/door/handle_pose", "/door/markers", "/operator/scribble", "/door_task/state",
+    "/door_task/approval_request", "/door_task/operator", "/diagnostics",
+}
+
+
+def test_every_design_topic_is_in_the_contract_once():
+    names = [topic.name for topic in Topics.all()]
+    assert len(names) == len(set(names))
+    assert DESIGN_TOPICS <= set(names)
+    assert {s.name for s in Services.all()} == {"/left_hand/grasp", "/right_hand/grasp"}
+
+
+def test_every_type_resolves_to_a_standard_message():
+    for topic in Topics.all():
+        cls = topic.msg_class()
+        assert cls.__name__ == topic.type_name.rsplit("/", 1)[1]
+    for service in Services.all():
+        assert hasattr(service.srv_class(), "Request")
+
+
+def test_latched_topics_are_transient_local():
+    for topic in (Topics.TASK_STATE, Topics.APPROVAL_REQUEST):
+        assert topic.qos.durability is Durability.TRANSIENT_LOCAL
+        assert topic.qos.to_profile().depth == 1
+
+
+def test_payload_round_trip():
+    outcome = ExecutionOutcome(ExecutionKind.TRAJECTORY, 42, OutcomeStatus.REJECTED, "unknown joint x")
+    assert decode(ExecutionOutcome, encode(outcome)) == outcome
+    planning = PlanningOutcome(3, OutcomeStatus.SUCCESS, planning_time_s=0.01, details={"steps": 12})
+    assert decode(PlanningOutcome, encode(planning)) == planning
+
+
+@pytest.mark.parametrize("text, error, match", [
+    ("not json", ContractError, "not JSON"),
+    ('{"kind": "dance", "request_id": 1, "status": "success"}', ContractError, "dance"),
+    ('{"kind": "trajectory", "request_id": 1, "status": "success", "extra": 1}', ContractError, "extra"),
+    ('{"kind": "trajectory", "request_id": "1", "status": "success"}', ContractError, "integer"),
+    ('{"kind": "trajectory", "status": "success"}', ContractError, "request_id"),
+    ('{"kind": "trajectory", "request_id": 1, "status": "success", "duration_s": NaN}', NonFiniteError, "duration_s"),
+])
+def test_bad_payloads(text, error, match):
+    with pytest.raises(error, match=match):
+        decode(ExecutionOutcome, text)
+
+
+def test_readme_topic_table_lists_every_topic():
+    from door_bringup.workspace import repository_root
+
+    readme = (repository_root() / "README.md").read_text()
+    for topic in Topics.all():
+        assert f"`{topic.name}`" in readme, topic.name
+    for service in Services.all():
+        assert f"`{service.name}`" in readme, service.name
