@@ -1,0 +1,56 @@
+"""Events the supervisor feeds into the machine (converted from topics by the node)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from door_fsm.operator_commands import OperatorCommand
+
+
+@dataclass(frozen=True)
+class ProposalReady:
+    """A planner (or the detector) answered request ``request_id`` with a proposal."""
+
+    request_id: int
+    summary: dict = field(default_factory=dict)  # shown to the operator: counts, costs, durations
+
+
+@dataclass(frozen=True)
+class ProposalFailed:
+    request_id: int
+    reason: str
+
+
+@dataclass(frozen=True)
+class ExecutionFinished:
+    """The sim bridge (or robot) finished — or rejected — executing ``request_id``."""
+
+    request_id: int
+    succeeded: bool
+    reason: str = ""
+
+
+@dataclass(frozen=True)
+class GraspAnswered:
+    request_id: int
+    succeeded: bool
+    message: str = ""
+
+
+@dataclass(frozen=True)
+class HandSlipped:
+    reason: str
+
+
+@dataclass(frozen=True)
+class OperatorSaid:
+    command: OperatorCommand
+
+
+@dataclass(frozen=True)
+class NodeLost:
+    node_name: str
+
+
+Event = (ProposalReady | ProposalFailed | ExecutionFinished | GraspAnswered | HandSlipped
+         | OperatorSaid | NodeLost)

@@ -1,0 +1,63 @@
+"""The FSM's transitions: (state, outcome) → next state, built per door and validated.
+
+Validation (run when the supervisor starts) checks that every outcome every reachable
+state declares is routed, and that DONE is reachable from DETECT_DOOR — a mis-wired
+machine is refused before it moves the robot.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+
+from door_fsm.states import DoorOpening, StateOutcome, TaskState
+from door_fsm.work import STATE_WORK
+
+Wiring = dict[tuple[TaskState, StateOutcome], TaskState]
+
+
+class WiringError(ValueError):
+    pass
+
+
+def success_sequence(opening: DoorOpening) -> tuple[TaskState, ...]:
+    """The states a successful run visits, in order (Fig. 3)."""
+    middle = (TaskState.PUSH,) if opening is DoorOpening.PUSH else (TaskState.PULL, TaskState.BLOCK)
+    return (TaskState.DETECT_DOOR, TaskState.WALK_TO_DOOR, TaskState.MOVE_TO_HANDLE, TaskState.GRASP,
+            TaskState.TURN_HANDLE, *middle, TaskState.READY_TO_WALK, TaskState.WALK_THROUGH, TaskState.DONE)
+
+
+def build_wiring(opening: DoorOpening) -> Wiring:
+    sequence = success_sequence(opening)
+    wiring: Wiring = {}
+    for state, following in zip(sequence, sequence[1:]):
+        wiring[(state, StateOutcome.SUCCEEDED)] = following
+        for outcome in STATE_WORK[state].outcomes - {StateOutcome.SUCCEEDED}:
+            wiring[(state, outcome)] = (TaskState.MOVE_TO_HANDLE if outcome is StateOutcome.SLIPPED
+                                        else TaskState.FAILED)
+    validate_wiring(wiring, sequence)
+    return wiring
+
+
+def validate_wiring(wiring: Wiring, sequence: tuple[TaskState, ...]) -> None:
+    """Raise :class:`WiringError` when an outcome is unrouted or DONE is unreachable."""
+    for state in _reachable(wiring, sequence[0]):
+        if state.is_terminal:
+            continue
+        if state not in STATE_WORK:
+            raise WiringError(f"{state.value} has no work defined")
+        missing = [o.value for o in STATE_WORK[state].outcomes if (state, o) not in wiring]
+        if missing:
+            raise WiringError(f"{state.value}: outcome(s) {', '.join(sorted(missing))} are not wired")
+    if TaskState.DONE not in _reachable(wiring, sequence[0]):
+        raise WiringError("DONE is not reachable from DETECT_DOOR")
+
+
+def _reachable(wiring: Wiring, start: TaskState) -> set[TaskState]:
+    seen, queue = {start}, deque([start])
+    while queue:
+        state = queue.popleft()
+        for (source, _), target in wiring.items():
+            if source is state and target not in seen:
+                seen.add(target)
+                queue.append(target)
+    return seen

@@ -1,0 +1,50 @@
+"""What each active state asks for, and which of its proposals are critical.
+
+A state's work is: ask (detector, footstep planner, trajectory optimizer or the grasp
+service), optionally wait for the operator's approval of the proposal, then execute it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+from door_fsm.states import StateOutcome, TaskState
+
+
+class WorkKind(str, Enum):
+    DETECTION = "detection"
+    FOOTSTEPS = "footsteps"
+    MOTION = "motion"
+    GRASP = "grasp"
+
+
+@dataclass(frozen=True)
+class StateWork:
+    kind: WorkKind
+    target: str                # footstep goal ("stand", "through") or motion name
+    critical: bool             # waits for approval under SUPERVISED autonomy
+    holds_handle: bool = False  # the hand is on the handle: a slip can happen
+    release_first: bool = False  # open the hand before planning (READY_TO_WALK)
+
+    @property
+    def outcomes(self) -> frozenset[StateOutcome]:
+        """The outcomes this state can end with (the wiring must route every one)."""
+        base = {StateOutcome.SUCCEEDED, StateOutcome.FAILED, StateOutcome.TIMEOUT, StateOutcome.ABORTED}
+        if self.holds_handle or self.kind is WorkKind.GRASP:
+            base.add(StateOutcome.SLIPPED)
+        return frozenset(base)
+
+
+STATE_WORK: dict[TaskState, StateWork] = {
+    TaskState.DETECT_DOOR: StateWork(WorkKind.DETECTION, "door", critical=True),
+    TaskState.WALK_TO_DOOR: StateWork(WorkKind.FOOTSTEPS, "stand", critical=True),
+    TaskState.MOVE_TO_HANDLE: StateWork(WorkKind.MOTION, "approach_handle", critical=False),
+    TaskState.GRASP: StateWork(WorkKind.GRASP, "close", critical=False),
+    TaskState.TURN_HANDLE: StateWork(WorkKind.MOTION, "turn_handle", critical=True, holds_handle=True),
+    TaskState.PUSH: StateWork(WorkKind.MOTION, "push_door", critical=False, holds_handle=True),
+    TaskState.PULL: StateWork(WorkKind.MOTION, "pull_door", critical=False, holds_handle=True),
+    TaskState.BLOCK: StateWork(WorkKind.MOTION, "block_door", critical=False, holds_handle=True),
+    TaskState.READY_TO_WALK: StateWork(WorkKind.MOTION, "ready_to_walk", critical=False, release_first=True),
+    TaskState.WALK_THROUGH: StateWork(WorkKind.FOOTSTEPS, "through", critical=True),
+}
