@@ -29,7 +29,7 @@ class TopicSpec:
 
     def msg_class(self) -> type:
         """The message class, imported on first use (the contract itself stays import-light)."""
-        return _interface_class(self.type_name)
+        return interface_class(self.type_name)
 
 
 @dataclass(frozen=True)
@@ -42,10 +42,10 @@ class ServiceSpec:
     meaning: str
 
     def srv_class(self) -> type:
-        return _interface_class(self.type_name)
+        return interface_class(self.type_name)
 
 
-def _interface_class(type_name: str) -> type:
+def interface_class(type_name: str) -> type:
     package, kind, name = type_name.split("/")
     return getattr(importlib.import_module(f"{package}.{kind}"), name)
 

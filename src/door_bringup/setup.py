@@ -26,6 +26,8 @@ setup(
     entry_points={
         "console_scripts": [
             "door_graph = door_bringup.graph:main",
+            "bag_play = door_bringup.bags.player:main",
+            "bag_record = door_bringup.bags.recorder:main",
         ],
     },
 )

@@ -1,0 +1,121 @@
+"""``bag_play``: publish a rosbag2 bag's messages with their original timing (like ``ros2 bag play``).
+
+    bag_play BAG [--rate 2.0] [--clock] [--topics /a /b] [--wait-for-subscribers 5]
+
+Messages are published as the serialized CDR bytes stored in the bag (no decode/encode),
+with the contract's QoS for the graph's own topics and reliable depth-100 otherwise.
+``--clock`` publishes /clock with the bag's time before each message, so nodes running
+with ``use_sim_time`` replay exactly.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.qos import QoSProfile
+from rosgraph_msgs.msg import Clock
+
+from door_bringup.bags.storage import BagMessage, read_messages
+from door_contract.stamps import to_time_msg
+from door_contract.topics import Topics, TopicSpec, interface_class
+
+
+@dataclass(frozen=True)
+class PlaybackOptions:
+    rate: float = 1.0                   # × original speed
+    publish_clock: bool = False
+    topics: tuple[str, ...] | None = None
+    wait_for_subscribers_s: float = 0.0  # wait (bounded) until each topic has a subscriber
+
+    def __post_init__(self) -> None:
+        if not self.rate > 0.0:
+            raise ValueError(f"rate must be > 0, got {self.rate}")
+
+
+def playback_offsets(timestamps_ns: Iterable[int], rate: float) -> list[float]:
+    """Wall-clock seconds after the start at which each message is due: (tᵢ − t₀) / rate."""
+    stamps = list(timestamps_ns)
+    return [(t - stamps[0]) * 1e-9 / rate for t in stamps] if stamps else []
+
+
+def qos_for(topic: str) -> QoSProfile:
+    spec: TopicSpec | None = next((t for t in Topics.all() if t.name == topic), None)
+    return spec.qos.to_profile() if spec else QoSProfile(depth=100)
+
+
+class BagPlayer(Node):
+    def __init__(self, messages: list[BagMessage], options: PlaybackOptions) -> None:
+        super().__init__("bag_player")
+        self.messages, self.options = messages, options
+        self.published = 0
+        self.publishers_by_topic = {}
+        for topic, type_name in sorted({(m.topic, m.type_name) for m in messages}):
+            try:
+                self.publishers_by_topic[topic] = self.create_publisher(
+                    interface_class(type_name), topic, qos_for(topic))
+            except (ImportError, AttributeError, ValueError):
+                self.get_logger().warning(f"skipping {topic}: message type {type_name} is not installed")
+        self.clock_publisher = self.create_publisher(Clock, Topics.CLOCK.name, Topics.CLOCK.qos.to_profile()) \
+            if options.publish_clock else None
+
+    def wait_for_subscribers(self) -> None:
+        deadline = time.monotonic() + self.options.wait_for_subscribers_s
+        while time.monotonic() < deadline:
+            if all(p.get_subscription_count() > 0 for p in self.publishers_by_topic.values()):
+                return
+            rclpy.spin_once(self, timeout_sec=0.05)
+
+    def play(self) -> int:
+        """Publish every message at its due time; returns how many were published."""
+        self.wait_for_subscribers()
+        offsets = playback_offsets((m.timestamp_ns for m in self.messages), self.options.rate)
+        start = time.monotonic()
+        for message, offset in zip(self.messages, offsets):
+            delay = start + offset - time.monotonic()
+            if delay > 0:
+                time.sleep(delay)  # pacing the playback itself, not synchronising a test
+            publisher = self.publishers_by_topic.get(message.topic)
+            if publisher is None:
+                continue
+            if self.clock_publisher is not None:
+                seconds = message.timestamp_ns * 1e-9
+                self.clock_publisher.publish(Clock(clock=to_time_msg(seconds)))
+            publisher.publish(message.data)
+            self.published += 1
+        return self.published
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description="Play a rosbag2 bag (sqlite3 or mcap).")
+    parser.add_argument("bag", type=Path)
+    parser.add_argument("--rate", type=float, default=1.0)
+    parser.add_argument("--clock", action="store_true", help="publish /clock from the bag's time")
+    parser.add_argument("--topics", nargs="+", default=None)
+    parser.add_argument("--wait-for-subscribers", type=float, default=0.0, metavar="SECONDS")
+    args, ros_args = parser.parse_known_args(argv)
+    options = PlaybackOptions(args.rate, args.clock, tuple(args.topics) if args.topics else None,
+                              args.wait_for_subscribers)
+    messages = list(read_messages(args.bag, options.topics))
+    rclpy.init(args=ros_args)
+    player = BagPlayer(messages, options)
+    try:
+        count = player.play()
+        player.get_logger().info(f"played {count} of {len(messages)} messages from {args.bag}")
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        player.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,72 @@
+"""``bag_record``: record topics into a rosbag2 bag (like ``ros2 bag record``).
+
+    bag_record OUTPUT [--storage sqlite3|mcap] [--topics /a /b]   (default: every topic)
+
+Subscribes with raw (serialized) callbacks, so messages are stored byte-identical; new
+topics are picked up while recording. Ctrl-C / SIGTERM closes the bag cleanly.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import rclpy
+from rclpy.node import Node
+
+from door_bringup.bags.player import qos_for
+from door_bringup.bags.storage import BagWriter, StorageFormat
+from door_contract.converters.diagnostics import Health
+from door_contract.node_support import Heartbeat, run_node
+from door_contract.topics import interface_class
+
+
+class BagRecorder(Node):
+    def __init__(self, output: Path, storage: StorageFormat, topics: tuple[str, ...] | None) -> None:
+        super().__init__("bag_recorder")
+        self.writer = BagWriter(output, storage)
+        self.wanted = set(topics) if topics else None
+        self.subscriptions_by_topic = {}
+        self.count = 0
+        self.heartbeat = Heartbeat(self, period_s=0.5)
+        self.discover()
+        self.create_timer(0.2, self.discover)
+        self.get_logger().info(f"recording to {output} ({storage.value})")
+
+    def discover(self) -> None:
+        for topic, types in self.get_topic_names_and_types():
+            if topic in self.subscriptions_by_topic or (self.wanted and topic not in self.wanted):
+                continue
+            try:
+                msg_type = interface_class(types[0])
+            except (ImportError, AttributeError, ValueError):
+                continue
+            self.subscriptions_by_topic[topic] = self.create_subscription(
+                msg_type, topic, self._writer_for(topic, types[0]), qos_for(topic), raw=True)
+
+    def _writer_for(self, topic: str, type_name: str):
+        def write(data: bytes) -> None:
+            self.writer.write(topic, type_name, self.get_clock().now().nanoseconds, data)
+            self.count += 1
+            self.heartbeat.update(Health.OK, "recording", recorded=self.count)
+        return write
+
+    def destroy_node(self) -> None:
+        self.writer.close()
+        self.get_logger().info(f"recorded {self.count} messages")
+        super().destroy_node()
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description="Record topics to a rosbag2 bag.")
+    parser.add_argument("output", type=Path)
+    parser.add_argument("--storage", choices=[s.value for s in StorageFormat], default="sqlite3")
+    parser.add_argument("--topics", nargs="+", default=None)
+    args, ros_args = parser.parse_known_args(argv)
+    return run_node(lambda: BagRecorder(args.output, StorageFormat(args.storage),
+                                        tuple(args.topics) if args.topics else None), ros_args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
