@@ -33,8 +33,8 @@ class ExecutionKind(str, Enum):
 class ExecutionOutcome:
     """Published by the sim bridge when a trajectory or footstep plan ends or is rejected.
 
-    ``request_id`` is the trajectory's / path's ``header.frame_id``-independent id: the
-    ``header.stamp`` in nanoseconds of the executed message, so the FSM can match it.
+    ``request_id`` is the ``header.stamp`` (ns) of the executed JointTrajectory or Path:
+    the FSM stamps what it sends and matches the outcome by it.
     """
 
     kind: ExecutionKind
@@ -42,6 +42,7 @@ class ExecutionOutcome:
     status: OutcomeStatus
     reason: str = ""
     duration_s: float = 0.0
+    slipped: bool = False  # the hand slipped off the handle during this trajectory
 
 
 @dataclasses.dataclass(frozen=True)
@@ -53,6 +54,63 @@ class PlanningOutcome:
     reason: str = ""
     planning_time_s: float = 0.0
     details: dict = dataclasses.field(default_factory=dict)
+
+
+class HingeSide(str, Enum):
+    """Side of the hinge as seen from the robot facing the door."""
+
+    LEFT = "left"
+    RIGHT = "right"
+
+    @property
+    def grasp_hand(self) -> str:
+        """The hand that opens the door: the one on the handle's side (opposite the hinge)."""
+        return "right" if self is HingeSide.LEFT else "left"
+
+
+@dataclasses.dataclass(frozen=True)
+class DoorEstimate:
+    """Published on ``/door/estimate`` (latched) by the detector; positions in ``frame_id``.
+
+    ``normal`` is the door plane's unit normal pointing towards the robot; ``corners`` are
+    bottom-hinge, bottom-free, top-free, top-hinge (m); ``handle_position`` is the grasp point.
+    """
+
+    stamp: float  # s
+    frame_id: str
+    handle_position: tuple[float, float, float]
+    normal: tuple[float, float, float]
+    hinge_side: HingeSide
+    width: float  # m
+    corners: tuple[tuple[float, float, float], ...]
+    confidence: float  # 0..1, fraction of voting frames that agreed
+    frames_voted: int
+    mode: str  # "automatic" | "operator"
+
+
+@dataclasses.dataclass(frozen=True)
+class FootstepRequest:
+    """``/footstep_planner/request``: plan to the stand pose or through the door.
+
+    ``door_angle`` is the current hinge angle (rad, 0 = closed, > 0 open), as known to the
+    FSM from the last executed door motion; the passage is re-planned when it changes.
+    """
+
+    request_id: int
+    goal: str  # "stand" | "through"
+    opening: str  # "push" | "pull"
+    door_angle: float = 0.0
+
+
+@dataclasses.dataclass(frozen=True)
+class MotionRequest:
+    """``/trajectory_optimizer/request``: one motion of the door motion library."""
+
+    request_id: int
+    motion: str  # approach_handle, turn_handle, push_door, pull_door, block_door, ready_to_walk
+    opening: str  # "push" | "pull"
+    backend: str = ""  # "sqp" | "chomp"; empty = the node's parameter
+    door_angle: float = 0.0
 
 
 def encode(payload: Any) -> str:
@@ -87,6 +145,20 @@ def decode(payload_type: type[Payload], text: str) -> Payload:
         raise ContractError(f"{payload_type.__name__}: {error}") from None
 
 
+def _finite_tuple(owner: str, name: str, values: list) -> tuple:
+    items = []
+    for value in values:
+        if isinstance(value, list):
+            items.append(_finite_tuple(owner, name, value))
+        elif isinstance(value, (int, float)) and not isinstance(value, bool):
+            if not math.isfinite(value):
+                raise NonFiniteError(f"{owner}.{name} is not finite")
+            items.append(float(value))
+        else:
+            raise ContractError(f"{owner}.{name}: expected numbers, got {value!r}")
+    return tuple(items)
+
+
 def _field_value(owner: str, name: str, hint: Any, value: Any) -> Any:
     if isinstance(hint, type) and issubclass(hint, Enum):
         try:
@@ -102,10 +174,12 @@ def _field_value(owner: str, name: str, hint: Any, value: Any) -> Any:
         return float(value)
     if hint is int and (not isinstance(value, int) or isinstance(value, bool)):
         raise ContractError(f"{owner}.{name}: expected an integer, got {value!r}")
+    if hint is bool and not isinstance(value, bool):
+        raise ContractError(f"{owner}.{name}: expected true or false, got {value!r}")
     if hint is str and not isinstance(value, str):
         raise ContractError(f"{owner}.{name}: expected a string, got {value!r}")
     if getattr(hint, "__origin__", None) is tuple or hint is tuple:
         if not isinstance(value, list):
             raise ContractError(f"{owner}.{name}: expected a list, got {value!r}")
-        return tuple(tuple(v) if isinstance(v, list) else v for v in value)
+        return _finite_tuple(owner, name, value)
     return value

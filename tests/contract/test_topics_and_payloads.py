@@ -66,3 +66,15 @@ def test_readme_topic_table_lists_every_topic():
         assert f"`{topic.name}`" in readme, topic.name
     for service in Services.all():
         assert f"`{service.name}`" in readme, service.name
+
+
+def test_door_estimate_round_trip_and_nan_rejected():
+    from door_contract.payloads import DoorEstimate, HingeSide
+
+    estimate = DoorEstimate(1.5, "odom", (1.0, 0.3, 0.9), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
+                            ((1.0, -0.45, 0.0), (1.0, 0.45, 0.0), (1.0, 0.45, 2.0), (1.0, -0.45, 2.0)),
+                            0.9, 10, "automatic")
+    assert decode(DoorEstimate, encode(estimate)) == estimate
+    broken = encode(estimate).replace("0.3, 0.9]", "0.3, 1e999]")
+    with pytest.raises(NonFiniteError, match="handle_position"):
+        decode(DoorEstimate, broken)

@@ -1,0 +1,21 @@
+"""What the operator sees in an approval request: short summaries of proposals."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from door_contract.payloads import DoorEstimate, PlanningOutcome
+
+
+def door_summary(estimate: DoorEstimate) -> dict:
+    handle = np.asarray(estimate.handle_position)
+    return {"handle_m": "(" + ", ".join(f"{v:.2f}" for v in handle) + ")",
+            "width_m": round(estimate.width, 3), "hinge": estimate.hinge_side.value,
+            "confidence": round(estimate.confidence, 2), "mode": estimate.mode}
+
+
+def plan_summary(outcome: PlanningOutcome) -> dict:
+    keep = ("steps", "length_m", "duration_s", "cost", "max_violation", "iterations", "backend")
+    summary = {k: outcome.details[k] for k in keep if k in outcome.details}
+    summary["planning_ms"] = round(outcome.planning_time_s * 1000.0, 1)
+    return summary
