@@ -31,6 +31,7 @@ def _claim_domain_id() -> tuple[int, object]:
 
 
 os.environ["ROS_AUTOMATIC_DISCOVERY_RANGE"] = "LOCALHOST"
+os.environ.setdefault("FASTRTPS_DEFAULT_PROFILES_FILE", str(repository_root() / "params" / "fastdds_profile.xml"))
 _DOMAIN_ID, _DOMAIN_LOCK = _claim_domain_id()
 os.environ["ROS_DOMAIN_ID"] = str(_DOMAIN_ID)
 os.environ.setdefault("DOOR_SHARED_DATA", str(repository_root().parent / "shared" / "data"))

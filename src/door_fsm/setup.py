@@ -21,6 +21,7 @@ setup(
     entry_points={
         "console_scripts": [
             "fsm_supervisor = door_fsm.fsm_supervisor_node:main",
+            "operator_console = door_fsm.operator_console:main",
         ],
     },
 )

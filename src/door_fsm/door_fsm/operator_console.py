@@ -1,0 +1,80 @@
+"""``operator_console``: watch the door task and answer it from a terminal.
+
+Shows ``/door_task/state`` and ``/door_task/approval_request`` as they change and sends what
+you type (approve, reject, repeat, pause, resume, abort, manual) on ``/door_task/operator``
+— the same topic and message as ``ros2 topic pub /door_task/operator std_msgs/msg/String
+"{data: approve}"``. ``--approve-all`` answers every approval request itself (scripted
+operator for demonstrations and tests).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import threading
+
+import rclpy
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from std_msgs.msg import String
+
+from door_contract.node_support import create_contract_publisher, create_contract_subscription
+from door_contract.topics import Topics
+from door_fsm.operator_commands import OperatorCommand, UnknownCommandError, parse_command
+
+
+class OperatorConsole(Node):
+    def __init__(self, approve_all: bool) -> None:
+        super().__init__("operator_console")
+        self.approve_all = approve_all
+        self.command_pub = create_contract_publisher(self, Topics.OPERATOR)
+        create_contract_subscription(self, Topics.TASK_STATE, self._on_state)
+        create_contract_subscription(self, Topics.APPROVAL_REQUEST, self._on_request)
+        self.state = ""
+
+    def _on_state(self, msg: String) -> None:
+        self.state = msg.data
+        print(f"[state] {msg.data}", flush=True)
+
+    def _on_request(self, msg: String) -> None:
+        if not msg.data:
+            return
+        print(f"[approval request] {msg.data}", flush=True)
+        if self.approve_all:
+            self.send(OperatorCommand.APPROVE)
+
+    def send(self, command: OperatorCommand) -> None:
+        self.command_pub.publish(String(data=command.value))
+        print(f"[sent] {command.value}", flush=True)
+
+
+def _read_commands(console: OperatorConsole) -> None:
+    for line in sys.stdin:
+        if not line.strip():
+            continue
+        try:
+            console.send(parse_command(line))
+        except UnknownCommandError as error:
+            print(f"[error] {error}", flush=True)
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--approve-all", action="store_true", help="approve every request automatically")
+    args, ros_args = parser.parse_known_args(argv)
+    rclpy.init(args=ros_args)
+    console = OperatorConsole(args.approve_all)
+    print("commands: " + ", ".join(c.value for c in OperatorCommand), flush=True)
+    threading.Thread(target=_read_commands, args=(console,), daemon=True).start()
+    try:
+        rclpy.spin(console)
+    except (KeyboardInterrupt, ExternalShutdownException):
+        pass
+    finally:
+        console.destroy_node()
+        rclpy.try_shutdown()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,112 @@
+"""The supervisor as a process over real DDS, with the test acting as operator and detector."""
+
+import subprocess
+
+import pytest
+import rclpy
+from diagnostic_msgs.msg import DiagnosticArray
+from std_msgs.msg import String
+
+from door_bringup.graph_spec import GRAPH
+from door_contract.node_support import create_contract_publisher, create_contract_subscription
+from door_contract.payloads import DoorEstimate, HingeSide, encode
+from door_contract.topics import Topics
+from ros_helpers import executor_for, spin_until
+
+FSM = next(launch for launch in GRAPH if launch.node_name == "fsm_supervisor")
+ESTIMATE = DoorEstimate(0.0, "odom", (1.2, -0.35, 0.95), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
+                        ((1.2, 0.46, 0.0), (1.2, -0.46, 0.0), (1.2, -0.46, 2.08), (1.2, 0.46, 2.08)),
+                        1.0, 10, "automatic")
+
+
+class Peer:
+    """Stands in for the detector (and is a 'required node'); records what the FSM says."""
+
+    def __init__(self, context):
+        self.node = rclpy.create_node("fsm_test_peer", context=context)
+        self.executor = executor_for(self.node, context)
+        self.states, self.requests, self.failures = [], [], []
+        self.estimate_pub = create_contract_publisher(self.node, Topics.DOOR_ESTIMATE)
+        self.operator_pub = create_contract_publisher(self.node, Topics.OPERATOR)
+        create_contract_subscription(self.node, Topics.TASK_STATE, self._on_state)
+        create_contract_subscription(self.node, Topics.APPROVAL_REQUEST,
+                                     lambda m: m.data and self.requests.append(m.data))
+        self.node.create_subscription(DiagnosticArray, Topics.DIAGNOSTICS.name, lambda a: self.failures.extend(
+            kv.value for s in a.status if s.name == "fsm_supervisor" for kv in s.values
+            if kv.key == "failure" and kv.value != "-"), 10)
+
+    def _on_state(self, msg):
+        self.states.append(msg.data)
+        if msg.data == "DETECT_DOOR":
+            self.estimate_pub.publish(String(data=encode(ESTIMATE)))
+
+    def say(self, word):
+        self.operator_pub.publish(String(data=word))
+
+    def wait(self, condition, timeout=30.0):
+        return spin_until(self.executor, condition, timeout)
+
+
+@pytest.fixture
+def supervisor(workspace, rclpy_context, tmp_path):
+    peer = Peer(rclpy_context)
+    log = (tmp_path / "fsm.log").open("w")
+    process = subprocess.Popen(
+        [str(workspace.executable(FSM.package, FSM.executable)), "--ros-args",
+         "--params-file", str(workspace.params_file("fsm_supervisor")),
+         "-p", "approval_timeout:=4.0", "-p", "start_delay:=0.5", "-p", "required_nodes:=['fsm_test_peer']"],
+        env=workspace.environment(), stdout=log, stderr=subprocess.STDOUT)
+    peer.log_path = tmp_path / "fsm.log"
+    yield peer
+    process.send_signal(2)
+    assert process.wait(timeout=20) == 0
+    peer.node.destroy_node()
+
+
+def test_approval_request_then_operator_silence_times_out(supervisor):
+    assert supervisor.wait(lambda: supervisor.requests), supervisor.log_path.read_text()
+    assert supervisor.requests[0].startswith("DETECT_DOOR #1: approve detection")
+    assert "hinge=left" in supervisor.requests[0]
+    assert supervisor.wait(lambda: "FAILED" in supervisor.states, 30.0)
+    assert supervisor.wait(lambda: any("operator did not answer" in f for f in supervisor.failures), 10.0)
+
+
+def test_reject_pause_resume_abort_and_unknown_command(supervisor):
+    assert supervisor.wait(lambda: supervisor.requests)
+    supervisor.say("reject")
+    assert supervisor.wait(lambda: len(supervisor.requests) >= 2)  # re-detected, asked again
+    assert supervisor.requests[1].startswith("DETECT_DOOR #2: approve detection")
+    supervisor.say("dance")
+    supervisor.say("pause")
+    assert supervisor.wait(lambda: supervisor.states[-1] == "PAUSED")
+    supervisor.say("resume")
+    assert supervisor.wait(lambda: supervisor.states[-1] == "DETECT_DOOR")
+    supervisor.say("abort")
+    assert supervisor.wait(lambda: supervisor.states[-1] == "FAILED")
+    assert supervisor.wait(lambda: any("aborted by the operator" in f for f in supervisor.failures), 10.0)
+    assert "unknown operator command 'dance'" in supervisor.log_path.read_text()
+
+
+def test_a_killed_node_fails_the_task(workspace, rclpy_context, tmp_path):
+    """SIGKILL a required node mid-task: the supervisor reports FAILED naming it, no hang."""
+    detector = next(launch for launch in GRAPH if launch.node_name == "door_detector")
+    victim = subprocess.Popen([str(workspace.executable(detector.package, detector.executable))],
+                              env=workspace.environment(), stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
+    peer = Peer(rclpy_context)
+    log = tmp_path / "fsm.log"
+    fsm = subprocess.Popen(
+        [str(workspace.executable(FSM.package, FSM.executable)), "--ros-args",
+         "--params-file", str(workspace.params_file("fsm_supervisor")), "-p", "start_delay:=0.5",
+         "-p", "required_nodes:=['door_detector']"],
+        env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
+    try:
+        assert peer.wait(lambda: peer.requests), log.read_text()
+        assert peer.wait(lambda: "door_detector" in peer.node.get_node_names())
+        victim.kill()
+        assert peer.wait(lambda: peer.states[-1] == "FAILED", 30.0), log.read_text()
+        assert peer.wait(lambda: any("/door_detector is gone" in f for f in peer.failures), 10.0)
+    finally:
+        victim.kill()
+        fsm.send_signal(2)
+        assert fsm.wait(timeout=20) == 0
+        peer.node.destroy_node()
