@@ -113,6 +113,30 @@ class MotionRequest:
     door_angle: float = 0.0
 
 
+@dataclasses.dataclass(frozen=True)
+class StateAttempt:
+    """One attempt at one FSM state (times in seconds)."""
+
+    state: str
+    attempt: int
+    outcome: str
+    planning_s: float
+    waiting_s: float
+    moving_s: float
+    reason: str = ""
+
+
+@dataclasses.dataclass(frozen=True)
+class TaskReport:
+    """``/door_task/report`` (latched): how the task ended and every state attempt."""
+
+    final_state: str  # DONE | FAILED
+    failure_reason: str
+    opening: str
+    autonomy: str
+    attempts: tuple[dict, ...]  # StateAttempt fields
+
+
 def encode(payload: Any) -> str:
     """JSON text of a payload dataclass (Enums by value)."""
     return json.dumps(dataclasses.asdict(payload), default=_enum_value, allow_nan=False)
@@ -150,6 +174,8 @@ def _finite_tuple(owner: str, name: str, values: list) -> tuple:
     for value in values:
         if isinstance(value, list):
             items.append(_finite_tuple(owner, name, value))
+        elif isinstance(value, dict):
+            items.append(value)
         elif isinstance(value, (int, float)) and not isinstance(value, bool):
             if not math.isfinite(value):
                 raise NonFiniteError(f"{owner}.{name} is not finite")

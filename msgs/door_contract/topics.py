@@ -118,6 +118,9 @@ class Topics:
                            "current FSM state")
     APPROVAL_REQUEST = TopicSpec("/door_task/approval_request", "std_msgs/msg/String", LATCHED,
                                  "fsm_supervisor", "what the FSM proposes and waits for")
+    TASK_REPORT = TopicSpec("/door_task/report", "std_msgs/msg/String", LATCHED, "fsm_supervisor",
+                            "JSON TaskReport when the task ends: every state attempt with its "
+                            "outcome, planning, waiting and moving time", unit="s")
     OPERATOR = TopicSpec("/door_task/operator", "std_msgs/msg/String", EVENTS, "operator",
                          "approve, reject, repeat, pause, resume, abort, manual")
     DIAGNOSTICS = TopicSpec("/diagnostics", "diagnostic_msgs/msg/DiagnosticArray", EVENTS, "all",

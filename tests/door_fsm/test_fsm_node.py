@@ -9,7 +9,7 @@ from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import DoorEstimate, HingeSide, encode
+from door_contract.payloads import DoorEstimate, HingeSide, TaskReport, decode, encode
 from door_contract.topics import Topics
 from ros_helpers import executor_for, spin_until
 
@@ -31,6 +31,9 @@ class Peer:
         create_contract_subscription(self.node, Topics.TASK_STATE, self._on_state)
         create_contract_subscription(self.node, Topics.APPROVAL_REQUEST,
                                      lambda m: m.data and self.requests.append(m.data))
+        self.reports = []
+        create_contract_subscription(self.node, Topics.TASK_REPORT,
+                                     lambda m: self.reports.append(decode(TaskReport, m.data)))
         self.node.create_subscription(DiagnosticArray, Topics.DIAGNOSTICS.name, lambda a: self.failures.extend(
             kv.value for s in a.status if s.name == "fsm_supervisor" for kv in s.values
             if kv.key == "failure" and kv.value != "-"), 10)
@@ -69,6 +72,10 @@ def test_approval_request_then_operator_silence_times_out(supervisor):
     assert "hinge=left" in supervisor.requests[0]
     assert supervisor.wait(lambda: "FAILED" in supervisor.states, 30.0)
     assert supervisor.wait(lambda: any("operator did not answer" in f for f in supervisor.failures), 10.0)
+    assert supervisor.wait(lambda: supervisor.reports, 10.0)
+    report = supervisor.reports[-1]
+    assert report.final_state == "FAILED" and "operator did not answer" in report.failure_reason
+    assert report.attempts[0]["state"] == "DETECT_DOOR" and report.attempts[0]["outcome"] == "timeout"
 
 
 def test_reject_pause_resume_abort_and_unknown_command(supervisor):

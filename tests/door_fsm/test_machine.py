@@ -53,6 +53,9 @@ def test_success_path_visits_fig3_states_in_order(opening):
     assert tuple(robot.visited) == success_sequence(opening)
     assert (TaskState.BLOCK in robot.visited) is (opening is DoorOpening.PULL)
     assert all(r.outcome is StateOutcome.SUCCEEDED for r in machine.records)
+    report = machine.report()
+    assert [a["state"] for a in report][:3] == ["DETECT_DOOR", "WALK_TO_DOOR", "OPEN_DOOR/MOVE_TO_HANDLE"]
+    assert all(a["planning_s"] > 0 for a in report)
 
 
 @pytest.mark.parametrize("autonomy, expected", [

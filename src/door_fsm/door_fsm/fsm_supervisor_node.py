@@ -22,7 +22,7 @@ from door_contract.errors import ContractError
 from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
                                         declare_parameters, run_node)
 from door_contract.payloads import (DoorEstimate, ExecutionOutcome, FootstepRequest, MotionRequest,
-                                    OutcomeStatus, PlanningOutcome, decode, encode)
+                                    OutcomeStatus, PlanningOutcome, TaskReport, decode, encode)
 from door_contract.topics import Services, Topics
 from door_fsm import actions as act
 from door_fsm import events as ev
@@ -62,6 +62,7 @@ class FsmSupervisorNode(Node):
     def _make_interfaces(self) -> None:
         pub = lambda topic: create_contract_publisher(self, topic)
         self.state_pub, self.approval_pub = pub(Topics.TASK_STATE), pub(Topics.APPROVAL_REQUEST)
+        self.report_pub = pub(Topics.TASK_REPORT)
         self.footsteps_pub, self.trajectory_pub = pub(Topics.FOOTSTEP_PLAN), pub(Topics.ARM_TRAJECTORY)
         self.footstep_request_pub, self.motion_request_pub = pub(Topics.FOOTSTEP_REQUEST), pub(Topics.MOTION_REQUEST)
         sub = lambda topic, callback: create_contract_subscription(self, topic, callback)
@@ -178,6 +179,11 @@ class FsmSupervisorNode(Node):
         self.heartbeat.update(health, action.state, reason=action.reason or "-",
                               failure=self.machine.failure_reason or "-")
         self.get_logger().info(f"state {action.state}" + (f" ({action.reason})" if action.reason else ""))
+        if self.machine.state.is_terminal:
+            report = TaskReport(self.machine.state.value, self.machine.failure_reason,
+                                self.parameters["opening"], self.parameters["autonomy"],
+                                tuple(self.machine.report()))
+            self.report_pub.publish(String(data=encode(report)))
 
     def _do_AskApproval(self, action: act.AskApproval) -> None:
         self.approval_pub.publish(String(data=action.text))

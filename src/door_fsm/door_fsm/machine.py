@@ -112,6 +112,14 @@ class DoorTaskMachine:
             reason = f"{self.phase.value} took longer than {self.options.state_timeout_s:g} s"
         return self._finish(StateOutcome.TIMEOUT, now, reason)
 
+    def report(self) -> list[dict]:
+        """Every state attempt so far, as plain dicts (the TaskReport's ``attempts``)."""
+        return [{"state": r.state.label, "attempt": r.attempt,
+                 "outcome": r.outcome.value if r.outcome else "unfinished",
+                 "planning_s": round(r.planning_s, 4), "waiting_s": round(r.waiting_s, 4),
+                 "moving_s": round(r.moving_s, 4), "reason": r.reason, "summary": r.summary}
+                for r in self.records]
+
     # ------------------------------------------------------------------ state entry and exit
     def _enter(self, state: TaskState, now: float, reason: str = "") -> list[act.Action]:
         self.state, self.phase, self._deadline = state, None, None
