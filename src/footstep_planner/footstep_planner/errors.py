@@ -1,0 +1,22 @@
+"""Errors raised by the footstep planner core.
+
+Bad *configuration* (an option out of range, a malformed door) raises
+:class:`FootstepPlannerError`; bad *planning input* (NaN goal, goal inside a
+wall, unreachable goal) never raises: the planner returns a failure
+:class:`~footstep_planner.plan.PlanOutcome` with a human-readable reason, so a
+node can publish it and keep running.
+"""
+
+from __future__ import annotations
+
+
+class FootstepPlannerError(ValueError):
+    """A value given to the footstep planner core is invalid.
+
+    ``field`` names the offending option or argument (empty when the error is
+    not about one field), so a ROS node can map it back to its parameter.
+    """
+
+    def __init__(self, message: str, field: str = "") -> None:
+        super().__init__(message)
+        self.field = field

@@ -1,0 +1,78 @@
+"""Collision checks of the robot's soles and body against a :class:`World`.
+
+The body is a rectangle ``2 * body_half_width`` wide (across the shoulders,
+along the body's y axis) and ``2 * body_half_depth`` deep (along its x axis),
+centred between the feet and turned with the stance yaw.  Walking through a
+doorway sideways (stance yaw +-90 degrees from the door normal) therefore puts
+the body's depth, not its width, across the opening.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from footstep_planner.footstep import Footstep, Pose2D, Stance
+from footstep_planner.geometry import BoolArray, FloatArray
+from footstep_planner.options import FootstepPlannerOptions
+from footstep_planner.world import World
+
+
+@dataclass(frozen=True)
+class FootprintChecker:
+    """Sole and body collision checks with the options' dimensions and margins."""
+
+    world: World
+    options: FootstepPlannerOptions
+
+    def soles_collide(self, x: FloatArray, y: FloatArray, yaw: FloatArray) -> BoolArray:
+        """For N sole poses, does each sole (grown by foot_margin) touch an obstacle?"""
+        options = self.options
+        return self.world.rectangles_collide(x, y, yaw, options.foot_length, options.foot_width,
+                                             options.foot_margin)
+
+    def bodies_collide(self, x: FloatArray, y: FloatArray, yaw: FloatArray) -> BoolArray:
+        """For N body poses, does each body rectangle (grown by body_margin) touch an obstacle?"""
+        options = self.options
+        return self.world.rectangles_collide(x, y, yaw, 2.0 * options.body_half_depth,
+                                             2.0 * options.body_half_width, options.body_margin)
+
+    def soles_and_bodies_collide(self, soles: tuple[FloatArray, FloatArray, FloatArray],
+                                 bodies: tuple[FloatArray, FloatArray, FloatArray]
+                                 ) -> tuple[BoolArray, BoolArray]:
+        """:meth:`soles_collide` and :meth:`bodies_collide` in one batched test."""
+        options = self.options
+        count = len(soles[0])
+        x, y, yaw = (np.concatenate((sole, body)) for sole, body in zip(soles, bodies))
+        sizes = np.empty((3, len(x)))
+        sizes[:, :count] = np.array([[options.foot_length], [options.foot_width],
+                                     [options.foot_margin]])
+        sizes[:, count:] = np.array([[2.0 * options.body_half_depth],
+                                     [2.0 * options.body_half_width], [options.body_margin]])
+        hits = self.world.rectangles_collide(x, y, yaw, sizes[0], sizes[1], sizes[2])
+        return hits[:count], hits[count:]
+
+    def footstep_collides(self, step: Footstep) -> bool:
+        """Does this sole touch an obstacle?"""
+        return bool(self.soles_collide(np.array([step.x]), np.array([step.y]),
+                                       np.array([step.yaw]))[0])
+
+    def body_collides(self, pose: Pose2D) -> bool:
+        """Does the body at ``pose`` touch an obstacle?"""
+        return bool(self.bodies_collide(np.array([pose.x]), np.array([pose.y]),
+                                        np.array([pose.yaw]))[0])
+
+    def stance_collision(self, stance: Stance) -> str | None:
+        """Why the stance collides ("left sole touches wall_hinge_side"), or None when free."""
+        options = self.options
+        for step in (stance.left, stance.right):
+            names = self.world.colliding_obstacles(step.x, step.y, step.yaw, options.foot_length,
+                                                   options.foot_width, options.foot_margin)
+            if names:
+                return f"{step.foot.value} sole touches {', '.join(names)}"
+        body = stance.body_pose
+        names = self.world.colliding_obstacles(body.x, body.y, body.yaw,
+                                               2.0 * options.body_half_depth,
+                                               2.0 * options.body_half_width, options.body_margin)
+        return f"body touches {', '.join(names)}" if names else None

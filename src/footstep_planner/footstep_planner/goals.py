@@ -1,0 +1,100 @@
+"""Goal poses from a door estimate, and when to re-plan through a moving door.
+
+All poses are body poses (the stance centre) in ``odom``; door coordinates
+(u along the wall from hinge to latch, s along the normal towards the robot)
+are defined in :mod:`~footstep_planner.door`.
+"""
+
+from __future__ import annotations
+
+import math
+
+from footstep_planner.door import DoorGeometry, DoorOpening
+from footstep_planner.footstep import Pose2D
+from footstep_planner.geometry import wrap_angle
+from footstep_planner.options import FootstepPlannerOptions
+from footstep_planner.validation import FieldRange, check_range
+
+DEFAULT_REACH = 0.50
+"""Distance from the door plane to the robot base when opening (m); 0.45-0.55 suits TALOS."""
+DEFAULT_HANDLE_OFFSET = 0.20
+"""Lateral distance from the base to the handle (m): puts it before the handle-side shoulder."""
+DEFAULT_SWEEP_CLEARANCE = 0.05
+"""Gap kept between the robot's footprint and a pull door's swing (m)."""
+
+
+def stand_pose_for_opening(door: DoorGeometry, options: FootstepPlannerOptions,
+                           reach: float = DEFAULT_REACH,
+                           handle_offset: float = DEFAULT_HANDLE_OFFSET,
+                           sweep_clearance: float = DEFAULT_SWEEP_CLEARANCE) -> Pose2D:
+    """Where the robot stands, facing the door, to grasp and open it.
+
+    The base stands ``reach`` m in front of the door plane (s = reach).
+    Along the wall it stands ``handle_offset`` m on the hinge side of the
+    handle (u = u_handle - handle_offset, u_handle = leaf width - the
+    handle's distance from the free edge), so it is shifted from the
+    doorway's centre towards the handle side and the handle is in front of
+    the handle-side arm.
+
+    A PULL door swings towards the robot through the quarter disc of radius
+    W (leaf width) about the hinge.  The robot's footprint (the body
+    rectangle, which contains both soles) must stay outside it: facing the
+    door, the footprint's corner nearest the hinge is at
+    (u - half_width, reach - half_depth), so it needs
+
+        (u - half_width)^2 + (reach - half_depth)^2 >= (W + clearance)^2,
+
+    i.e. u >= half_width + sqrt((W + clearance)^2 - (reach - half_depth)^2):
+    beside the handle side, further from the hinge than the door is wide.
+    """
+    check_range("reach", reach, FieldRange(0.2, 1.5, "m"))
+    check_range("handle_offset", handle_offset, FieldRange(-1.0, 1.0, "m"))
+    check_range("sweep_clearance", sweep_clearance, FieldRange(0.0, 0.5, "m"))
+    along = door.leaf_width - door.handle_offset - handle_offset
+    if door.opening is DoorOpening.PULL:
+        along = max(along, _outside_sweep(door, options, reach, sweep_clearance))
+    x, y = door.to_world(along, reach)
+    return Pose2D(x, y, door.facing_yaw)
+
+
+def _outside_sweep(door: DoorGeometry, options: FootstepPlannerOptions, reach: float,
+                   clearance: float) -> float:
+    """Smallest u that keeps the footprint, facing the door at s = reach, out of the swing."""
+    half_width, half_depth = _footprint_half_extents(options)
+    radius = door.leaf_width + door.leaf_thickness + clearance
+    near_face = reach - half_depth
+    if near_face >= radius:
+        return -math.inf
+    return half_width + math.sqrt(radius * radius - max(near_face, 0.0) ** 2)
+
+
+def _footprint_half_extents(options: FootstepPlannerOptions) -> tuple[float, float]:
+    """Half width and half depth of a rectangle holding the body and both soles (with margins)."""
+    sole_half_width = (options.nominal_foot_separation + options.foot_width) / 2.0
+    half_width = max(options.body_half_width + options.body_margin,
+                     sole_half_width + options.foot_margin)
+    half_depth = max(options.body_half_depth + options.body_margin,
+                     options.foot_length / 2.0 + options.foot_margin)
+    return half_width, half_depth
+
+
+def through_door_pose(door: DoorGeometry, distance_beyond: float = 1.0) -> Pose2D:
+    """A pose ``distance_beyond`` m past the door plane, centred on the clear opening,
+    facing away from the approach side (the way the robot walks through)."""
+    check_range("distance_beyond", distance_beyond, FieldRange(0.0, 10.0, "m", low_open=True))
+    x, y = door.to_world(door.clear_opening / 2.0, -distance_beyond)
+    return Pose2D(x, y, door.facing_yaw)
+
+
+def replan_needed(previous_door_angle: float, measured_door_angle: float,
+                  threshold: float = 0.1) -> bool:
+    """Re-plan the passage when the door has swung by more than ``threshold`` rad.
+
+    The seed system passed the door with a dynamic potential field because the
+    door could swing shut; here the plan is recomputed against the newly
+    measured leaf whenever |measured - previous| (wrapped) exceeds the threshold.
+    """
+    check_range("previous_door_angle", previous_door_angle, FieldRange(-math.inf, math.inf, "rad"))
+    check_range("measured_door_angle", measured_door_angle, FieldRange(-math.inf, math.inf, "rad"))
+    check_range("threshold", threshold, FieldRange(0.0, math.pi, "rad", low_open=True))
+    return abs(wrap_angle(measured_door_angle - previous_door_angle)) > threshold

@@ -1,0 +1,75 @@
+"""What a planning request returns: a footstep plan or a failure outcome with its reason."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+from footstep_planner.footstep import Footstep, Pose2D, Stance
+
+
+class PlanOutcome(Enum):
+    """How a planning request ended."""
+
+    SUCCESS = "success"
+    UNREACHABLE = "unreachable"
+    """No collision-free footstep sequence reaches the goal (proved before or by the search)."""
+    EXPANSION_LIMIT = "expansion_limit"
+    """The search expanded ``max_expansions`` states without reaching the goal."""
+    TIME_LIMIT = "time_limit"
+    """The search ran for ``max_planning_time`` without reaching the goal."""
+    INVALID_START = "invalid_start"
+    """The start stance is not finite or collides."""
+    INVALID_GOAL = "invalid_goal"
+    """The goal pose is not finite or its stance collides."""
+
+
+@dataclass(frozen=True)
+class FootstepPlan:
+    """A collision-free footstep sequence from ``start`` to a stance at ``goal``.
+
+    ``steps`` are placed in order (each foot alternately); the last step
+    closes the stance, so the final two steps form the nominal stance within
+    the goal tolerances.  ``cost`` is the sum of the step costs.
+    """
+
+    start: Stance
+    goal: Pose2D
+    steps: tuple[Footstep, ...]
+    cost: float
+    expansions: int
+    planning_time: float
+    """Wall time of the request (s)."""
+
+    @property
+    def final_stance(self) -> Stance:
+        """Both feet after the last step."""
+        stance = self.start
+        for step in self.steps:
+            stance = stance.with_footstep(step)
+        return stance
+
+    def stances(self) -> tuple[Stance, ...]:
+        """The stance after each step (the start stance excluded)."""
+        stance, result = self.start, []
+        for step in self.steps:
+            stance = stance.with_footstep(step)
+            result.append(stance)
+        return tuple(result)
+
+
+@dataclass(frozen=True)
+class PlanResult:
+    """The answer to one planning request: an outcome, a reason, and the plan on success."""
+
+    outcome: PlanOutcome
+    reason: str
+    plan: FootstepPlan | None
+    expansions: int
+    planning_time: float
+    """Wall time of the request (s)."""
+
+    @property
+    def succeeded(self) -> bool:
+        """True when a plan was found."""
+        return self.outcome is PlanOutcome.SUCCESS
