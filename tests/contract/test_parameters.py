@@ -5,21 +5,9 @@ import math
 import pytest
 
 from door_bringup.graph_spec import GRAPH
+from door_bringup.params_files import SPECS_BY_NODE
 from door_contract.errors import ParameterRangeError
 from door_contract.parameters import ParameterSpec, defaults, read_params_file, validate_all
-from door_detection.parameters import DETECTOR_PARAMETERS
-from door_fsm.parameters import SUPERVISOR_PARAMETERS
-from door_sim_bridge.parameters import BRIDGE_PARAMETERS
-from door_trajopt.parameters import OPTIMIZER_PARAMETERS
-from footstep_planner.parameters import PLANNER_PARAMETERS
-
-SPECS_BY_NODE = {
-    "door_detector": DETECTOR_PARAMETERS,
-    "footstep_planner": PLANNER_PARAMETERS,
-    "trajectory_optimizer": OPTIMIZER_PARAMETERS,
-    "fsm_supervisor": SUPERVISOR_PARAMETERS,
-    "sim_bridge": BRIDGE_PARAMETERS,
-}
 RATE = ParameterSpec("rate", 10.0, "a rate", unit="Hz", minimum=1.0, maximum=100.0)
 
 

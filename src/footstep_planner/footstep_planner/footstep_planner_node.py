@@ -1,19 +1,191 @@
-"""ROS 2 node ``/footstep_planner``: A* footsteps to the stand pose and through the door."""
+"""ROS 2 node ``/footstep_planner``: A* footsteps to the stand pose and through the door.
+
+A :class:`~door_contract.payloads.FootstepRequest` ("stand" or "through") is planned from
+the robot's odometry and the last door estimate; the plan goes out on
+``/footstep_planner/plan`` (even index = left foot) with markers, then a PlanningOutcome
+with the plan's stamp. Bad or missing inputs and unreachable goals end in a failure
+outcome with the planner's reason, within its expansion and time bounds.
+"""
 
 from __future__ import annotations
 
-from rclpy.node import Node
+import math
 
-from door_contract.node_support import Heartbeat, declare_parameters, run_node
+import numpy as np
+from nav_msgs.msg import Odometry
+from rclpy.node import Node
+from std_msgs.msg import String
+from visualization_msgs.msg import Marker, MarkerArray
+
+from door_contract.converters.diagnostics import Health
+from door_contract.converters.footsteps import Foot as ContractFoot
+from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
+from door_contract.converters.pose import pose_to_matrix, yaw_of
+from door_contract.errors import ContractError, ParameterRangeError
+from door_contract.frames import Frame
+from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
+                                        declare_parameters, run_node)
+from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, decode, encode
+from door_contract.topics import Topics
+from door_robot.profile import load_profile
+from footstep_planner.astar import FootstepPlanner
+from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide
+from footstep_planner.errors import FootstepPlannerError
+from footstep_planner.footstep import Foot, Pose2D, Stance
+from footstep_planner.goals import replan_needed, stand_pose_for_opening, through_door_pose
+from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import NODE_NAME, PLANNER_PARAMETERS
+from footstep_planner.plan import FootstepPlan
+from footstep_planner.world import World
+
+
+class RequestRefused(Exception):
+    pass
+
+
+def planner_options(profile_name: str, parameters: dict) -> FootstepPlannerOptions:
+    """Planner options from the robot profile's walking limits and the node's parameters."""
+    walking = load_profile(profile_name).walking
+    return FootstepPlannerOptions(
+        max_stride=walking.max_stride, max_side_step=walking.max_side_step, max_turn=walking.max_turn,
+        nominal_foot_separation=walking.foot_separation,
+        min_foot_separation=min(0.16, walking.foot_separation * 0.9),
+        foot_length=walking.foot_length, foot_width=walking.foot_width,
+        body_half_width=walking.body_width / 2.0, body_half_depth=walking.body_depth / 2.0,
+        heuristic_weight=parameters["heuristic_weight"], max_expansions=parameters["max_expansions"],
+        max_planning_time=parameters["max_planning_time"])
 
 
 class FootstepPlannerNode(Node):
     def __init__(self) -> None:
         super().__init__(NODE_NAME)
         self.parameters = declare_parameters(self, PLANNER_PARAMETERS)
+        try:
+            self.options = planner_options(self.parameters["robot_profile"], self.parameters)
+        except FootstepPlannerError as error:
+            raise ParameterRangeError(f"footstep planner options: {error}") from None
+        self.base_pose: np.ndarray | None = None
+        self.door: DoorEstimate | None = None
+        self.passage_angle: float | None = None
         self.heartbeat = Heartbeat(self)
-        self.get_logger().info(f"ready; heuristic weight {self.parameters['heuristic_weight']}")
+        self.plan_pub = create_contract_publisher(self, Topics.FOOTSTEP_PROPOSAL)
+        self.outcome_pub = create_contract_publisher(self, Topics.FOOTSTEP_OUTCOME)
+        self.marker_pub = create_contract_publisher(self, Topics.FOOTSTEP_MARKERS)
+        create_contract_subscription(self, Topics.ODOM, self._on_odom)
+        create_contract_subscription(self, Topics.DOOR_ESTIMATE, self._on_door)
+        create_contract_subscription(self, Topics.FOOTSTEP_REQUEST, self._on_request)
+        self.get_logger().info(f"ready: {self.parameters['robot_profile']} steps ≤ {self.options.max_stride} m, "
+                               f"heuristic weight {self.options.heuristic_weight}")
+
+    def _on_odom(self, msg: Odometry) -> None:
+        try:
+            self.base_pose = pose_to_matrix(msg.pose.pose)
+        except ContractError as error:
+            self.base_pose = None
+            self.get_logger().warning(f"odometry rejected: {error}")
+        self.heartbeat.values["odom"] = "" if self.base_pose is None else f"{msg.header.stamp.sec}.{msg.header.stamp.nanosec:09d}"
+
+    def _on_door(self, msg: String) -> None:
+        try:
+            self.door = decode(DoorEstimate, msg.data)
+        except ContractError as error:
+            self.get_logger().warning(f"door estimate rejected: {error}")
+        self.heartbeat.values["door"] = "" if self.door is None else f"{self.door.stamp:.3f}"
+
+    def _on_request(self, msg: String) -> None:
+        try:
+            request = decode(FootstepRequest, msg.data)
+        except ContractError as error:
+            self.get_logger().warning(f"footstep request rejected: {error}")
+            return
+        try:
+            start, goal, world = self._problem(request)
+        except (RequestRefused, FootstepPlannerError, ValueError) as error:
+            self._answer(request, OutcomeStatus.REJECTED, str(error))
+            return
+        result = FootstepPlanner(world, self.options).plan(start, goal)
+        if not result.succeeded:
+            self._answer(request, OutcomeStatus.FAILURE, f"{result.outcome.value}: {result.reason}",
+                         result.planning_time, {"expansions": result.expansions})
+            return
+        placements = contract_footsteps(start, result.plan)
+        path = footsteps_to_path(placements)
+        path.header.stamp = self.get_clock().now().to_msg()
+        self.plan_pub.publish(path)
+        self.marker_pub.publish(footstep_markers(placements, self.options))
+        stamp_ns = path.header.stamp.sec * 1_000_000_000 + path.header.stamp.nanosec
+        length = float(np.hypot(goal.x - start.left.x / 2 - start.right.x / 2, goal.y - start.left.y / 2 - start.right.y / 2))
+        self._answer(request, OutcomeStatus.SUCCESS, "", result.planning_time,
+                     {"stamp_ns": stamp_ns, "steps": len(result.plan.steps), "length_m": round(length, 3),
+                      "expansions": result.expansions})
+
+    def _problem(self, request: FootstepRequest) -> tuple[Stance, Pose2D, World]:
+        if self.base_pose is None:
+            raise RequestRefused("no valid odometry yet")
+        if self.door is None:
+            raise RequestRefused("no door estimate yet")
+        if request.goal not in ("stand", "through"):
+            raise RequestRefused(f"unknown goal {request.goal!r}; use 'stand' or 'through'")
+        body = Pose2D(float(self.base_pose[0, 3]), float(self.base_pose[1, 3]), yaw_of(self.base_pose))
+        start = Stance.nominal(body, self.options.nominal_foot_separation)
+        door = self._door_geometry(request)
+        if request.goal == "stand":
+            sweep = (0.0, math.pi / 2) if door.opening is DoorOpening.PULL else None
+            goal = stand_pose_for_opening(door, self.options, reach=self.parameters["stand_reach"],
+                                          handle_offset=self.parameters["stand_handle_offset"])
+            return start, goal, World.from_door(door, sweep)
+        angle = max(request.door_angle, self.parameters["passage_door_angle"])
+        if self.passage_angle is not None and replan_needed(self.passage_angle, angle):
+            self.get_logger().info(f"door angle changed {self.passage_angle:.2f} → {angle:.2f} rad: re-planning")
+        self.passage_angle = angle
+        door = door.with_angle(angle)
+        return start, through_door_pose(door, self.parameters["beyond_door"]), World.from_door(door)
+
+    def _door_geometry(self, request: FootstepRequest) -> DoorGeometry:
+        estimate = self.door
+        normal = np.asarray(estimate.normal[:2])
+        normal_yaw = math.atan2(normal[1], normal[0])
+        face = np.asarray(estimate.handle_position[:2]) - self.parameters["handle_standoff"] * normal / np.linalg.norm(normal)
+        return DoorGeometry.from_handle(float(face[0]), float(face[1]), normal_yaw,
+                                        HingeSide(estimate.hinge_side.value), DoorOpening(request.opening),
+                                        angle=request.door_angle)
+
+    def _answer(self, request: FootstepRequest, status: OutcomeStatus, reason: str,
+                planning_time: float = 0.0, details: dict | None = None) -> None:
+        outcome = PlanningOutcome(request.request_id, status, reason, planning_time, details or {})
+        self.outcome_pub.publish(String(data=encode(outcome)))
+        line = f"request {request.request_id} ({request.goal}): {status.value} in {planning_time * 1000:.1f} ms"
+        if status is OutcomeStatus.SUCCESS:  # rclpy forbids one call site logging at two severities
+            self.get_logger().info(line)
+        else:
+            self.get_logger().warning(f"{line}: {reason}")
+        self.heartbeat.update(Health.OK if status is OutcomeStatus.SUCCESS else Health.WARN,
+                              f"last: {request.goal} {status.value}", last_planning_ms=round(planning_time * 1000, 2))
+
+
+def contract_footsteps(start: Stance, plan: FootstepPlan) -> list[FootPlacement]:
+    """The plan in the /footstep_plan convention: even index = left foot (a step in place first
+    when the plan starts with the right foot)."""
+    steps = list(plan.steps)
+    if steps and steps[0].foot is Foot.RIGHT:
+        steps.insert(0, start.left)
+    return [FootPlacement(ContractFoot.LEFT if s.foot is Foot.LEFT else ContractFoot.RIGHT, s.x, s.y, s.yaw)
+            for s in steps]
+
+
+def footstep_markers(steps: list[FootPlacement], options: FootstepPlannerOptions) -> MarkerArray:
+    markers = MarkerArray()
+    markers.markers.append(Marker(action=Marker.DELETEALL))
+    for index, step in enumerate(steps):
+        marker = Marker(type=Marker.CUBE, action=Marker.ADD, id=index, ns="footsteps")
+        marker.header.frame_id = Frame.ODOM.value
+        marker.pose.position.x, marker.pose.position.y, marker.pose.position.z = step.x, step.y, 0.01
+        marker.pose.orientation.z, marker.pose.orientation.w = math.sin(step.yaw / 2), math.cos(step.yaw / 2)
+        marker.scale.x, marker.scale.y, marker.scale.z = options.foot_length, options.foot_width, 0.02
+        left = step.foot is ContractFoot.LEFT
+        marker.color.r, marker.color.g, marker.color.b, marker.color.a = (0.1, 0.4, 1.0, 0.8) if left else (1.0, 0.3, 0.1, 0.8)
+        markers.markers.append(marker)
+    return markers
 
 
 def main(args: list[str] | None = None) -> int:

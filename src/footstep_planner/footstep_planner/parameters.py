@@ -6,8 +6,17 @@ NODE_NAME = "footstep_planner"
 
 PLANNER_PARAMETERS = (
     ParameterSpec("robot_profile", "talos", "robot profile (params/robot_<name>.yaml) giving step limits"),
-    ParameterSpec("heuristic_weight", 1.0, "A* heuristic weight; > 1 gives weighted A*",
-                  minimum=1.0, maximum=10.0),
+    ParameterSpec("heuristic_weight", 1.5, "A* heuristic weight; 1 = A*, > 1 weighted A* (faster, "
+                  "slightly longer plans)", minimum=1.0, maximum=10.0),
     ParameterSpec("max_expansions", 200000, "bound on A* node expansions", minimum=100, maximum=10000000),
     ParameterSpec("max_planning_time", 2.0, "bound on planning time", unit="s", minimum=0.01, maximum=60.0),
+    ParameterSpec("stand_reach", 0.50, "base to door plane when opening", unit="m", minimum=0.2, maximum=1.5),
+    ParameterSpec("stand_handle_offset", 0.20, "base to handle along the wall, towards the hinge",
+                  unit="m", minimum=-0.5, maximum=0.8),
+    ParameterSpec("handle_standoff", 0.06, "door face behind the handle grasp point", unit="m",
+                  minimum=0.0, maximum=0.3),
+    ParameterSpec("beyond_door", 1.0, "goal distance past the door plane", unit="m", minimum=0.3, maximum=5.0),
+    ParameterSpec("passage_door_angle", 1.57, "door angle assumed while passing: the body pushes the "
+                  "leaf open (seed 001 used a potential field for the swinging door)", unit="rad",
+                  minimum=0.0, maximum=2.0),
 )

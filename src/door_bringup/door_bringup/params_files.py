@@ -1,0 +1,57 @@
+"""Write ``params/<node>.yaml`` from the nodes' parameter specs (the specs are the source).
+
+    python -m door_bringup.params_files          # rewrite every node's params file
+
+A test checks that the files and the specs agree, so run this after changing a spec.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+
+from door_bringup.workspace import Workspace, repository_root
+from door_contract.parameters import ParameterSpec
+from door_detection.parameters import DETECTOR_PARAMETERS
+from door_fsm.parameters import SUPERVISOR_PARAMETERS
+from door_sim_bridge.parameters import BRIDGE_PARAMETERS
+from door_trajopt.parameters import OPTIMIZER_PARAMETERS
+from footstep_planner.parameters import PLANNER_PARAMETERS
+
+SPECS_BY_NODE = {
+    "sim_bridge": BRIDGE_PARAMETERS,
+    "door_detector": DETECTOR_PARAMETERS,
+    "footstep_planner": PLANNER_PARAMETERS,
+    "trajectory_optimizer": OPTIMIZER_PARAMETERS,
+    "fsm_supervisor": SUPERVISOR_PARAMETERS,
+}
+
+
+def _yaml_value(value: object) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (str, tuple)):
+        return json.dumps(list(value) if isinstance(value, tuple) else value)
+    return repr(value)
+
+
+def params_file_text(node_name: str, specs: tuple[ParameterSpec, ...]) -> str:
+    lines = [f"# Parameters of /{node_name} (ROS 2 --params-file format), written from the node's",
+             "# parameter specs by `python -m door_bringup.params_files`; edit values freely.",
+             f"{node_name}:", "  ros__parameters:"]
+    for spec in specs:
+        entry = f"    {spec.name}: {_yaml_value(spec.default)}"
+        lines.append(f"{entry.ljust(44)}  # {spec.allowed()}")
+    return "\n".join(lines) + "\n"
+
+
+def main() -> int:
+    workspace = Workspace(repository_root())
+    for node_name, specs in SPECS_BY_NODE.items():
+        workspace.params_file(node_name).write_text(params_file_text(node_name, specs))
+        print(f"wrote {workspace.params_file(node_name)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
