@@ -210,3 +210,23 @@ def test_miswired_machine_is_refused():
 def test_every_state_of_the_work_table_has_a_kind():
     machine = DoorTaskMachine(MachineOptions())
     assert machine.work.kind is WorkKind.DETECTION
+
+
+def test_table_one_rows_from_reports():
+    from door_bringup.table_one import format_table, phase_rows
+
+    runs = []
+    for opening in DoorOpening:
+        machine = DoorTaskMachine(MachineOptions(opening=opening, autonomy=AutonomyLevel.FULL))
+        Robot(machine).run(machine.start(0.0))
+        runs.append({"attempts": machine.report()})
+    failed = DoorTaskMachine(MachineOptions(max_repeats=0))
+    failed.start(0.0)
+    failed.handle(ev.ProposalFailed(failed.request_id, "no door"), 1.0)
+    runs.append({"attempts": failed.report()})
+    rows = {row.phase: row for row in phase_rows(runs)}
+    assert (rows["DETECT_DOOR"].runs, rows["DETECT_DOOR"].successes) == (3, 2)
+    assert (rows["OPEN_DOOR"].runs, rows["OPEN_DOOR"].successes) == (2, 2)
+    assert rows["OPEN_DOOR"].moving_s > 0
+    table = format_table(list(rows.values()), 3, 2, "Door task")
+    assert "| **overall** | **2/3 (67 %)**" in table

@@ -1,0 +1,69 @@
+"""Tables in the form of seed 001's Table I: per phase, success, planning time, moving time."""
+
+from __future__ import annotations
+
+from collections import defaultdict
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+PHASES = ("DETECT_DOOR", "WALK_TO_DOOR", "OPEN_DOOR", "WALK_THROUGH")
+
+
+@dataclass(frozen=True)
+class PhaseRow:
+    phase: str
+    runs: int
+    successes: int
+    planning_s: float  # mean per run
+    moving_s: float  # mean per run
+    waiting_s: float  # mean per run (operator)
+
+    @property
+    def success_rate(self) -> float:
+        return self.successes / self.runs if self.runs else 0.0
+
+
+def phase_of(state_label: str) -> str:
+    return "OPEN_DOOR" if state_label.startswith("OPEN_DOOR/") else state_label
+
+
+def phase_rows(reports: Iterable[dict]) -> list[PhaseRow]:
+    """Rows over one or many TaskReports (dicts): a phase succeeds in a run when its last
+    attempt succeeded and the run went on past it."""
+    totals: dict[str, list[float]] = defaultdict(lambda: [0, 0, 0.0, 0.0, 0.0])
+    for report in reports:
+        seen: dict[str, dict] = {}
+        for attempt in report["attempts"]:
+            phase = phase_of(attempt["state"])
+            entry = seen.setdefault(phase, {"ok": True, "plan": 0.0, "move": 0.0, "wait": 0.0})
+            entry["plan"] += attempt["planning_s"]
+            entry["move"] += attempt["moving_s"]
+            entry["wait"] += attempt["waiting_s"]
+            entry["last"] = attempt["outcome"]
+        for phase, entry in seen.items():
+            row = totals[phase]
+            row[0] += 1
+            row[1] += 1 if entry["last"] == "succeeded" else 0
+            row[2] += entry["plan"]
+            row[3] += entry["move"]
+            row[4] += entry["wait"]
+    rows = []
+    for phase in PHASES:
+        runs, ok, plan, move, wait = totals.get(phase, [0, 0, 0.0, 0.0, 0.0])
+        rows.append(PhaseRow(phase, int(runs), int(ok), plan / runs if runs else 0.0,
+                             move / runs if runs else 0.0, wait / runs if runs else 0.0))
+    return rows
+
+
+def format_table(rows: list[PhaseRow], overall_runs: int, overall_successes: int, title: str) -> str:
+    """Markdown table: phase | success | planning time | moving time | operator time."""
+    lines = [f"### {title}", "", "| phase | success | planning time | moving time | operator time |",
+             "|---|---|---|---|---|"]
+    for row in rows:
+        lines.append(f"| {row.phase} | {row.successes}/{row.runs} ({100 * row.success_rate:.0f} %) | "
+                     f"{row.planning_s:.3f} s | {row.moving_s:.1f} s | {row.waiting_s:.1f} s |")
+    rate = 100.0 * overall_successes / overall_runs if overall_runs else 0.0
+    lines.append(f"| **overall** | **{overall_successes}/{overall_runs} ({rate:.0f} %)** | "
+                 f"{sum(r.planning_s for r in rows):.3f} s | {sum(r.moving_s for r in rows):.1f} s | "
+                 f"{sum(r.waiting_s for r in rows):.1f} s |")
+    return "\n".join(lines)
