@@ -1,0 +1,118 @@
+"""Benchmark of the simulation bridge: physics real-time factor and camera frame rates.
+
+``python -m door_sim_bridge.benchmark`` prints one row per figure: the seed papers' figure
+(none exists for the simulator: "n/a"), our target, what this machine achieves and the ratio
+ours / target (≥ 1 meets the target). Times are CPU seconds of this process (one core), so
+other programs running on the machine do not distort them. Targets: the physics (robot +
+door, 240 Hz, no camera) at least 5× faster than real time, so a Monte-Carlo campaign and the
+real-time node both have headroom; the head camera at least at the bridge's default
+publishing rate (``CameraConfig.frame_rate_hz``) at the MultiSense SL's 1024×544 and at VGA.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from door_robot.profile import Side
+from door_sim_bridge.execution import TrajectoryExecution
+from door_sim_bridge.world import CameraConfig, DoorPart, DoorWorld, RobotVisuals, WorldConfig
+
+PHYSICS_SECONDS = 10.0  # simulated seconds per physics measurement
+CAMERA_FRAMES = 10
+RTF_TARGET = 5.0
+
+
+@dataclass(frozen=True)
+class BenchmarkRow:
+    """One line of the results table."""
+
+    figure: str
+    paper: str
+    target: float
+    ours: float
+    unit: str
+
+    @property
+    def ratio(self) -> float:
+        return self.ours / self.target
+
+
+def _timed(action: Callable[[], None]) -> float:
+    """CPU seconds of this process spent in ``action`` (one core; other load does not count)."""
+    start = time.process_time()
+    action()
+    return time.process_time() - start
+
+
+def physics_idle(world: DoorWorld) -> float:
+    """Real-time factor holding the nominal posture next to a latched door."""
+    steps = int(PHYSICS_SECONDS * world.config.physics_rate)
+    begin = world.time
+    wall = _timed(lambda: world.step(steps))
+    return (world.time - begin) / wall
+
+
+def physics_busy(world: DoorWorld) -> float:
+    """Real-time factor with an arm trajectory running and the unlatched door swinging."""
+    steps = int(PHYSICS_SECONDS * world.config.physics_rate)
+    joints = world.profile.arm(Side.LEFT).joints[2:6]
+    start = np.array([world.joint_positions()[name] for name in joints])
+    times = np.linspace(1.0, PHYSICS_SECONDS, 10)
+    offsets = 0.3 * np.sin(times / 2.0)[:, None] ** 2 * np.array([-1.0, 1.0, 1.0, -1.0])  # away from limits
+    execution = TrajectoryExecution(world, times, joints, start + offsets)
+    if execution.done:
+        raise RuntimeError(f"benchmark trajectory rejected: {execution.result}")
+    grasp = world.handle_grasp_pose()[:3, 3]
+    world.apply_door_force([0.0, 0.0, -40.0], grasp, DoorPart.HANDLE, steps)
+    world.apply_door_force(-80.0 * world.handle_grasp_pose()[:3, 0], grasp, DoorPart.LEAF, steps // 4)
+    begin = world.time
+    wall = _timed(lambda: execution.advance(steps))
+    return (world.time - begin) / wall
+
+
+def camera_rate(width: int, height: int, visuals: RobotVisuals = RobotVisuals.ARMS) -> float:
+    """Rendered RGB-D frames per CPU second (TinyRenderer, one core)."""
+    camera = CameraConfig(width=width, height=height, vertical_fov_deg=45.0 if width > 640 else 60.0,
+                          robot_visuals=visuals)
+    with DoorWorld(WorldConfig(camera=camera)) as world:
+        world.render()  # warm-up
+        return CAMERA_FRAMES / _timed(lambda: [world.render() for _ in range(CAMERA_FRAMES)])
+
+
+def run() -> list[BenchmarkRow]:
+    frame_rate = CameraConfig().frame_rate_hz
+    with DoorWorld() as world:
+        idle, busy = physics_idle(world), physics_busy(world)
+    rows = [BenchmarkRow("physics real-time factor, robot + door, 240 Hz, idle", "n/a", RTF_TARGET,
+                         idle, "×"),
+            BenchmarkRow("physics real-time factor, arm moving + door swinging", "n/a", RTF_TARGET,
+                         busy, "×")]
+    for width, height in ((1024, 544), (640, 480)):
+        rows.append(BenchmarkRow(f"camera RGB-D {width}×{height} (arms rendered)", "n/a", frame_rate,
+                                 camera_rate(width, height), "frames/s"))
+    rows.append(BenchmarkRow("camera RGB-D 1024×544 (whole robot rendered)", "n/a", frame_rate,
+                             camera_rate(1024, 544, RobotVisuals.ALL), "frames/s"))
+    return rows
+
+
+def format_table(rows: list[BenchmarkRow]) -> str:
+    header = f"{'figure':<56} {'paper':>6} {'target':>10} {'ours':>10} {'ours/target':>12}"
+    lines = [header, "-" * len(header)]
+    for row in rows:
+        lines.append(f"{row.figure:<56} {row.paper:>6} {row.target:>8.1f} {row.unit[:1]:<1} "
+                     f"{row.ours:>8.1f} {row.unit[:1]:<1} {row.ratio:>11.2f}")
+    lines.append("units: × = simulated s per CPU s; f = frames per CPU second (one core, this process only)")
+    return "\n".join(lines)
+
+
+def main() -> int:
+    print(format_table(run()))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

@@ -1,0 +1,9 @@
+"""Errors of the simulation bridge's ROS-free core."""
+
+
+class SimulationError(ValueError):
+    """A configuration value out of range, an unknown joint or link, or a misuse of the world.
+
+    The message names the field (or joint) and, for ranges, the allowed interval, so a node
+    can log it verbatim and refuse to start.
+    """

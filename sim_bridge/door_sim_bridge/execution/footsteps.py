@@ -1,0 +1,164 @@
+"""Walking a footstep plan quasi-statically with the kinematically moved base.
+
+Validation first (any failure → REJECTED, nothing moves): a non-empty plan whose feet alternate
+left, right, … starting with the left foot (the contract's convention: even index = left),
+finite poses, and every step within the profile's walking limits, measured — as the footstep
+planner does — in the frame of the support foot (the other foot's latest placement, or its
+current pose for the first step): forward/backward reach |dx| ≤ max_stride, lateral distance
+towards the swing foot's own side in [foot_width, foot_separation + max_side_step] (the legs
+never cross), |dyaw| ≤ max_turn.
+
+Motion: each footstep takes ``step_duration`` of simulated time. During it the base glides from
+the stance before the step to the stance after it — the midpoint of the two soles with their
+mean heading, at the nominal base height and offset — along a cosine-eased blend
+s(τ) = (1 - cos πτ) / 2 (zero velocity at both ends, as a quasi-static walker pauses in double
+support). The legs stay in their posture: the soles move with the base, so the world's sole
+links report the stance *centre* and heading exactly, and the individual soles at the nominal
+separation. If a robot link penetrates the wall or door frame deeper than ``collision_depth``
+the walk stops with FAILURE (the real robot would have hit it).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from door_contract.converters.footsteps import Foot, FootPlacement, foot_of_index
+from door_contract.payloads import OutcomeStatus
+from door_robot.profile import WalkingLimits
+from door_sim_bridge.execution.base import Execution
+from door_sim_bridge.world.transforms import planar, yaw_of
+from door_sim_bridge.world.world import DoorWorld
+
+LIMIT_TOLERANCE = 1e-6
+
+
+def wrap_angle(angle: float) -> float:
+    """Angle in (-pi, pi]."""
+    return math.atan2(math.sin(angle), math.cos(angle))
+
+
+def relative_step(support: FootPlacement, swing: FootPlacement) -> tuple[float, float, float]:
+    """(forward, outward, turn) of ``swing`` in ``support``'s frame.
+
+    ``outward`` is the lateral offset towards the swing foot's own side (+y for a left foot).
+    """
+    c, s = math.cos(support.yaw), math.sin(support.yaw)
+    dx, dy = swing.x - support.x, swing.y - support.y
+    forward, lateral = c * dx + s * dy, -s * dx + c * dy
+    outward = lateral if swing.foot is Foot.LEFT else -lateral
+    return forward, outward, wrap_angle(swing.yaw - support.yaw)
+
+
+def _step_problem(index: int, support: FootPlacement, swing: FootPlacement,
+                  limits: WalkingLimits) -> str | None:
+    forward, outward, turn = relative_step(support, swing)
+    where = f"step {index} ({swing.foot.value} foot)"
+    widest = limits.foot_separation + limits.max_side_step
+    if abs(forward) > limits.max_stride + LIMIT_TOLERANCE:
+        return f"{where}: stride {forward:+.3f} m exceeds max_stride {limits.max_stride:.3f} m"
+    if outward < limits.foot_width - LIMIT_TOLERANCE:
+        return (f"{where}: soles only {outward:.3f} m apart sideways (at least the foot width "
+                f"{limits.foot_width:.3f} m, or the legs cross)")
+    if outward > widest + LIMIT_TOLERANCE:
+        return f"{where}: soles {outward:.3f} m apart sideways, more than {widest:.3f} m"
+    if abs(turn) > limits.max_turn + LIMIT_TOLERANCE:
+        return f"{where}: turn {turn:+.3f} rad exceeds max_turn {limits.max_turn:.3f} rad"
+    return None
+
+
+def _finite(*values: object) -> bool:
+    return all(isinstance(v, numbers.Real) and not isinstance(v, bool) and math.isfinite(v)
+               for v in values)
+
+
+def validate_footsteps(steps: Sequence[FootPlacement], current: Mapping[Foot, FootPlacement],
+                       limits: WalkingLimits) -> str | None:
+    """The reason to reject the plan, or None when it may be walked."""
+    if not steps:
+        return "footstep plan is empty"
+    feet = dict(current)
+    for index, step in enumerate(steps):
+        if not isinstance(step, FootPlacement):
+            return f"step {index} is not a FootPlacement"
+        if step.foot is not foot_of_index(index):
+            return (f"step {index} is the {getattr(step.foot, 'value', step.foot)} foot; feet must "
+                    f"alternate starting with the left foot")
+        if not _finite(step.x, step.y, step.yaw):
+            return f"step {index} contains NaN, infinity or a non-number"
+        other = Foot.RIGHT if step.foot is Foot.LEFT else Foot.LEFT
+        problem = _step_problem(index, feet[other], step, limits)
+        if problem is not None:
+            return problem
+        feet[step.foot] = step
+    return None
+
+
+def smooth_blend(tau: float) -> float:
+    """Cosine ease from 0 to 1 over tau in [0, 1], zero slope at both ends."""
+    return 0.5 - 0.5 * math.cos(math.pi * min(max(tau, 0.0), 1.0))
+
+
+def blend_poses(start: np.ndarray, end: np.ndarray, weight: float) -> np.ndarray:
+    """Planar blend of two base poses: position linearly, heading along the shorter arc."""
+    position = (1.0 - weight) * start[:3, 3] + weight * end[:3, 3]
+    heading = yaw_of(start) + weight * wrap_angle(yaw_of(end) - yaw_of(start))
+    return planar(position[0], position[1], heading, position[2])
+
+
+class FootstepExecution(Execution):
+    """One footstep plan on the world's robot (see the module docstring)."""
+
+    def __init__(self, world: DoorWorld, steps: Sequence[FootPlacement]) -> None:
+        super().__init__(world)
+        self.steps = tuple(steps)
+        self._feet = world.foot_placements()
+        reason = validate_footsteps(self.steps, self._feet, world.profile.walking)
+        if reason is not None:
+            self._reject(reason)
+        self._step_duration = world.config.execution.step_duration
+        self._index = 0
+        self._from_pose = np.eye(4)
+        self._to_pose = np.eye(4)
+
+    @property
+    def steps_done(self) -> int:
+        """Footsteps completed so far."""
+        return self._index
+
+    def _on_start(self) -> None:
+        self._begin_step()
+
+    def _begin_step(self) -> None:
+        step = self.steps[self._index]
+        self._from_pose = self.world.base_pose()
+        self._feet[step.foot] = step
+        self._to_pose = self.world.base_pose_for_feet(self._feet[Foot.LEFT], self._feet[Foot.RIGHT])
+
+    def _command_now(self) -> None:
+        penetration = self.world.scene_penetration()
+        if penetration > self.world.config.execution.collision_depth:
+            self._finish(OutcomeStatus.FAILURE, f"robot hit the wall or door frame during step "
+                                                f"{self._index} ({penetration:.3f} m deep)")
+            return
+        slip = self._slip_since_start()
+        if slip is not None:
+            self._finish(OutcomeStatus.FAILURE, f"grasp slipped at t = {slip.time:.2f} s while walking")
+            return
+        tau = (self.elapsed - self._index * self._step_duration) / self._step_duration
+        if tau >= 1.0:
+            self.world.set_base_pose(self._to_pose)
+            self._index += 1
+            if self._index == len(self.steps):
+                self._finish(OutcomeStatus.SUCCESS)
+                return
+            self._begin_step()
+            tau = (self.elapsed - self._index * self._step_duration) / self._step_duration
+        step_time = self.world.config.time_step / self._step_duration
+        self.world.set_base_pose(blend_poses(self._from_pose, self._to_pose, smooth_blend(tau + step_time)))
+
+    def _hold(self) -> None:
+        """The base stays where it is (it only moves when commanded)."""

@@ -1,0 +1,317 @@
+"""Validated, frozen configuration of the simulated door world.
+
+Every value is checked on construction; a bad one raises :class:`SimulationError` naming the
+field and its allowed range. Defaults describe the DARPA Robotics Challenge door (36 × 82 in,
+lever handle at 0.91 m) and a MultiSense-like head camera. All randomness of a run (wind
+phase, image noise) is derived from :attr:`WorldConfig.seed`, so equal configurations give
+identical runs.
+
+Units are SI throughout: metres, radians, seconds, newtons, newton-metres; colours are RGB in
+[0, 1].
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields
+from enum import Enum
+
+from door_sim_bridge.errors import SimulationError
+
+Colour = tuple[float, float, float]
+"""RGB in [0, 1]."""
+
+MIN_COLOUR_DISTANCE = 0.15
+"""Smallest Euclidean RGB distance between any two scene colours (so segmentation can work)."""
+
+
+class DoorOpening(str, Enum):
+    """Which way the leaf swings, seen from the robot's starting side (x < 0)."""
+
+    PUSH = "push"  # away from the robot, towards +x
+    PULL = "pull"  # towards the robot, towards -x
+
+
+class HingeSide(str, Enum):
+    """Side of the hinges as seen from the robot facing the door (+x): LEFT is +y."""
+
+    LEFT = "left"
+    RIGHT = "right"
+
+    @property
+    def sign(self) -> float:
+        """+1 when the hinge edge is at +y, -1 at -y."""
+        return 1.0 if self is HingeSide.LEFT else -1.0
+
+
+class RobotVisuals(str, Enum):
+    """Which robot links the camera renders (TinyRenderer cost grows with mesh triangles)."""
+
+    ALL = "all"
+    ARMS = "arms"  # only links moved by the arm joints the two arms do not share
+    NONE = "none"
+
+
+def _require(owner: str, name: str, value: object, low: float, high: float, unit: str = "") -> None:
+    """Raise :class:`SimulationError` unless ``value`` is a finite real number in [low, high]."""
+    suffix = f" {unit}" if unit else ""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise SimulationError(f"{owner}.{name} must be a number in [{low:.10g}, {high:.10g}]{suffix}, "
+                              f"got {value!r}")
+    if not math.isfinite(value) or not low <= value <= high:
+        raise SimulationError(f"{owner}.{name} = {value!r} is outside the allowed range "
+                              f"[{low:.10g}, {high:.10g}]{suffix}")
+
+
+def _require_int(owner: str, name: str, value: object, low: int, high: int) -> None:
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise SimulationError(f"{owner}.{name} must be an integer in [{low}, {high}], got {value!r}")
+    _require(owner, name, value, low, high)
+
+
+def _require_enum(owner: str, name: str, value: object, kind: type[Enum]) -> None:
+    if not isinstance(value, kind):
+        allowed = ", ".join(member.value for member in kind)
+        raise SimulationError(f"{owner}.{name} must be one of {allowed}, got {value!r}")
+
+
+def _require_colour(owner: str, name: str, value: object) -> None:
+    if not isinstance(value, tuple) or len(value) != 3:
+        raise SimulationError(f"{owner}.{name} must be an (r, g, b) tuple in [0, 1], got {value!r}")
+    for component in value:
+        _require(owner, name, component, 0.0, 1.0)
+
+
+def _check_ranges(owner: object, ranges: dict[str, tuple[float, float, str]]) -> None:
+    name = type(owner).__name__
+    for key, (low, high, unit) in ranges.items():
+        _require(name, key, getattr(owner, key), low, high, unit)
+
+
+@dataclass(frozen=True)
+class WindConfig:
+    """Wind torque on the hinge: tau_w(t) = bias + amplitude * sin(2 pi frequency t + phase).
+
+    Positive torque opens the door. The phase is drawn from the world seed. Off by default.
+    """
+
+    amplitude: float = 0.0  # N·m
+    frequency: float = 0.3  # Hz
+    bias: float = 0.0  # N·m
+
+    def __post_init__(self) -> None:
+        _check_ranges(self, {"amplitude": (0.0, 100.0, "N·m"), "frequency": (0.0, 10.0, "Hz"),
+                             "bias": (-100.0, 100.0, "N·m")})
+
+    @property
+    def enabled(self) -> bool:
+        return self.amplitude > 0.0 or self.bias != 0.0
+
+
+@dataclass(frozen=True)
+class DoorConfig:
+    """The door leaf, its frame and wall, the lever handle, the latch and the springs.
+
+    Physics (applied as joint torques every physics step, since PyBullet clears them):
+
+    * hinge: tau = -(closer_preload + closer_stiffness * theta) - hinge_damping * dtheta + wind,
+      plus Coulomb friction ``hinge_friction`` (a velocity motor with target 0 and that force
+      limit, which the constraint solver handles without chatter);
+    * handle: tau = -(handle_preload + handle_stiffness * phi) - handle_damping * dphi, plus
+      friction ``handle_friction``;
+    * latch: while latched the hinge may open only ``latch_play``; turning the handle past
+      ``latch_release_angle`` retracts the bolt, and the latch re-engages once the handle is back
+      below the release angle and the door within ``latch_engage_angle`` of closed.
+    """
+
+    opening: DoorOpening = DoorOpening.PUSH
+    hinge_side: HingeSide = HingeSide.LEFT
+    width: float = 0.914  # m, leaf (DRC: 36 in)
+    height: float = 2.083  # m, leaf (DRC: 82 in)
+    thickness: float = 0.04  # m
+    mass: float = 25.0  # kg, leaf
+    floor_gap: float = 0.01  # m under the leaf
+    handle_height: float = 0.91  # m above the floor, lever axis
+    handle_backset: float = 0.07  # m, latch edge to lever axis
+    lever_length: float = 0.11  # m, axis to lever tip (points towards the hinge side)
+    lever_standoff: float = 0.06  # m, door face to the lever's centre line
+    grasp_fraction: float = 0.6  # grasp point along the lever, as a fraction of its length
+    handle_max_angle: float = 1.0  # rad, handle stop
+    hinge_max_angle: float = 1.75  # rad, door stop (about 100 deg)
+    latch_release_angle: float = 0.52  # rad of handle turn that retracts the bolt (~30 deg)
+    latch_engage_angle: float = 0.035  # rad from closed where the bolt catches again (~2 deg)
+    latch_play: float = 0.004  # rad the latched door can move (a few mm at the latch edge)
+    closer_stiffness: float = 8.0  # N·m/rad
+    closer_preload: float = 2.0  # N·m at closed
+    hinge_damping: float = 3.0  # N·m·s/rad
+    hinge_friction: float = 0.5  # N·m
+    handle_stiffness: float = 2.0  # N·m/rad
+    handle_preload: float = 0.3  # N·m at rest
+    handle_damping: float = 0.02  # N·m·s/rad
+    handle_friction: float = 0.02  # N·m
+    handle_mass: float = 0.3  # kg
+    door_colour: Colour = (0.55, 0.33, 0.17)
+    frame_colour: Colour = (0.92, 0.92, 0.88)
+    handle_colour: Colour = (0.85, 0.70, 0.15)
+    wall_colour: Colour = (0.45, 0.58, 0.72)
+    floor_colour: Colour = (0.30, 0.30, 0.30)
+    wind: WindConfig = field(default_factory=WindConfig)
+
+    def __post_init__(self) -> None:
+        _require_enum("DoorConfig", "opening", self.opening, DoorOpening)
+        _require_enum("DoorConfig", "hinge_side", self.hinge_side, HingeSide)
+        _check_ranges(self, _DOOR_RANGES)
+        self._check_relations()
+        self._check_colours()
+        if not isinstance(self.wind, WindConfig):
+            raise SimulationError(f"DoorConfig.wind must be a WindConfig, got {self.wind!r}")
+
+    def _check_relations(self) -> None:
+        top = self.floor_gap + self.height
+        _require("DoorConfig", "handle_height", self.handle_height, self.floor_gap + 0.2, top - 0.2, "m")
+        _require("DoorConfig", "lever_length", self.lever_length, 0.05,
+                 self.width - self.handle_backset - 0.02, "m")
+        _require("DoorConfig", "latch_release_angle", self.latch_release_angle, 0.05,
+                 self.handle_max_angle - 0.05, "rad")
+        _require("DoorConfig", "latch_play", self.latch_play, 0.0, self.latch_engage_angle, "rad")
+
+    def _check_colours(self) -> None:
+        names = ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour")
+        for name in names:
+            _require_colour("DoorConfig", name, getattr(self, name))
+        for i, first in enumerate(names):
+            for second in names[i + 1:]:
+                if math.dist(getattr(self, first), getattr(self, second)) < MIN_COLOUR_DISTANCE:
+                    raise SimulationError(f"DoorConfig.{first} and DoorConfig.{second} must differ "
+                                          f"by at least {MIN_COLOUR_DISTANCE} in RGB distance")
+
+
+_DOOR_RANGES: dict[str, tuple[float, float, str]] = {
+    "width": (0.5, 1.5, "m"), "height": (1.5, 3.0, "m"), "thickness": (0.01, 0.1, "m"),
+    "mass": (1.0, 200.0, "kg"), "floor_gap": (0.0, 0.05, "m"),
+    "handle_height": (0.4, 2.0, "m"), "handle_backset": (0.03, 0.2, "m"),
+    "lever_length": (0.05, 0.25, "m"), "lever_standoff": (0.03, 0.12, "m"),
+    "grasp_fraction": (0.2, 1.0, ""), "handle_max_angle": (0.2, 1.5, "rad"),
+    "hinge_max_angle": (0.5, 3.0, "rad"), "latch_release_angle": (0.05, 1.45, "rad"),
+    "latch_engage_angle": (0.002, 0.2, "rad"), "latch_play": (0.0, 0.2, "rad"),
+    "closer_stiffness": (0.0, 200.0, "N·m/rad"), "closer_preload": (0.0, 50.0, "N·m"),
+    "hinge_damping": (0.0, 100.0, "N·m·s/rad"), "hinge_friction": (0.0, 20.0, "N·m"),
+    "handle_stiffness": (0.0, 20.0, "N·m/rad"), "handle_preload": (0.0, 5.0, "N·m"),
+    "handle_damping": (0.0, 5.0, "N·m·s/rad"), "handle_friction": (0.0, 2.0, "N·m"),
+    "handle_mass": (0.05, 5.0, "kg"),
+}
+
+
+@dataclass(frozen=True)
+class StanceConfig:
+    """Where the robot starts: its base at x = -distance, y = lateral_offset, facing +x rotated by yaw."""
+
+    distance: float = 1.2  # m from the door plane (x = 0) to the base
+    lateral_offset: float = 0.0  # m along y
+    yaw: float = 0.0  # rad relative to facing the door (+x)
+
+    def __post_init__(self) -> None:
+        _check_ranges(self, {"distance": (0.3, 8.0, "m"), "lateral_offset": (-3.0, 3.0, "m"),
+                             "yaw": (-math.pi, math.pi, "rad")})
+
+
+@dataclass(frozen=True)
+class CameraConfig:
+    """Head RGB-D camera (MultiSense-like), rendered by PyBullet's CPU TinyRenderer.
+
+    Noise (off by default): depth sigma = depth_noise_coefficient * z**2 (stereo error grows with
+    the square of the range), colour sigma in 8-bit intensity levels.
+    """
+
+    width: int = 640  # px
+    height: int = 480  # px
+    vertical_fov_deg: float = 60.0  # deg
+    near: float = 0.1  # m
+    far: float = 8.0  # m
+    frame_rate_hz: float = 5.0  # frames per simulated second the node should publish
+    depth_noise_coefficient: float = 0.0  # 1/m
+    colour_noise_sigma: float = 0.0  # intensity levels (0..255)
+    head_pitch: float = 0.3  # rad, head tilted down so a door at 1-4 m and its handle are in view
+    robot_visuals: RobotVisuals = RobotVisuals.ARMS
+
+    def __post_init__(self) -> None:
+        _require_int("CameraConfig", "width", self.width, 16, 4096)
+        _require_int("CameraConfig", "height", self.height, 16, 4096)
+        _check_ranges(self, {"vertical_fov_deg": (10.0, 120.0, "deg"), "near": (0.01, 1.0, "m"),
+                             "frame_rate_hz": (0.1, 60.0, "Hz"),
+                             "depth_noise_coefficient": (0.0, 0.1, "1/m"),
+                             "colour_noise_sigma": (0.0, 50.0, "levels"),
+                             "head_pitch": (-1.0, 1.0, "rad")})
+        _require("CameraConfig", "far", self.far, self.near + 0.1, 100.0, "m")
+        _require_enum("CameraConfig", "robot_visuals", self.robot_visuals, RobotVisuals)
+
+
+@dataclass(frozen=True)
+class ExecutionConfig:
+    """How joint trajectories and footstep plans are executed and judged."""
+
+    settle_time: float = 0.25  # s held at the final point before judging
+    goal_tolerance: float = 0.05  # rad; a joint farther than this at the end is a FAILURE
+    start_tolerance: float = 0.2  # rad; a first point at t = 0 farther than this is REJECTED
+    velocity_limit_scale: float = 1.0  # x URDF velocity limit allowed between waypoints
+    step_duration: float = 1.0  # s of simulated time per footstep (quasi-static)
+    collision_depth: float = 0.01  # m of penetration into the wall or frame that stops walking
+
+    def __post_init__(self) -> None:
+        _check_ranges(self, {"settle_time": (0.0, 5.0, "s"), "goal_tolerance": (1e-4, 1.0, "rad"),
+                             "start_tolerance": (1e-4, 3.2, "rad"),
+                             "velocity_limit_scale": (0.1, 10.0, ""),
+                             "step_duration": (0.05, 10.0, "s"), "collision_depth": (0.0, 0.5, "m")})
+
+
+@dataclass(frozen=True)
+class WorldConfig:
+    """The whole scene: robot, door, starting stance, camera, physics, grasp and seed."""
+
+    robot_profile: str = "talos"
+    door: DoorConfig = field(default_factory=DoorConfig)
+    stance: StanceConfig = field(default_factory=StanceConfig)
+    camera: CameraConfig = field(default_factory=CameraConfig)
+    execution: ExecutionConfig = field(default_factory=ExecutionConfig)
+    physics_rate: float = 240.0  # Hz
+    seed: int = 0
+    gravity: float = 9.81  # m/s²
+    grasp_distance: float = 0.02  # m, TCP to handle grasp point, to close a grasp
+    grasp_break_force: float = 200.0  # N, grip: constraint force beyond which the hand slips
+    grasp_break_steps: int = 3  # consecutive physics steps above the limit before it slips
+    joint_force_scale: float = 2.0  # x URDF effort limit given to each position motor
+    posture_overrides: tuple[tuple[str, float], ...] = ()  # (joint, rad) over the nominal posture
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.robot_profile, str) or not self.robot_profile:
+            raise SimulationError(f"WorldConfig.robot_profile must be a profile name, "
+                                  f"got {self.robot_profile!r}")
+        for name, kind in (("door", DoorConfig), ("stance", StanceConfig), ("camera", CameraConfig),
+                           ("execution", ExecutionConfig)):
+            if not isinstance(getattr(self, name), kind):
+                raise SimulationError(f"WorldConfig.{name} must be a {kind.__name__}")
+        _require_int("WorldConfig", "seed", self.seed, 0, 2**31 - 1)
+        _require_int("WorldConfig", "grasp_break_steps", self.grasp_break_steps, 1, 1000)
+        _check_ranges(self, {"physics_rate": (60.0, 2000.0, "Hz"), "gravity": (0.0, 20.0, "m/s²"),
+                             "grasp_distance": (0.001, 0.2, "m"),
+                             "grasp_break_force": (1.0, 1e5, "N"),
+                             "joint_force_scale": (0.1, 100.0, "")})
+        self._check_overrides()
+
+    def _check_overrides(self) -> None:
+        for entry in self.posture_overrides:
+            if (not isinstance(entry, tuple) or len(entry) != 2 or not isinstance(entry[0], str)):
+                raise SimulationError(f"WorldConfig.posture_overrides entries must be (joint, rad), "
+                                      f"got {entry!r}")
+            _require("WorldConfig", f"posture_overrides[{entry[0]}]", entry[1], -2 * math.pi,
+                      2 * math.pi, "rad")
+
+    @property
+    def time_step(self) -> float:
+        """Seconds per physics step."""
+        return 1.0 / self.physics_rate
+
+
+def field_names(config_type: type) -> tuple[str, ...]:
+    """Names of a configuration dataclass's fields (for nodes mapping parameters onto them)."""
+    return tuple(f.name for f in fields(config_type))

@@ -1,0 +1,78 @@
+"""Configuration validation and the door's geometry convention (no physics)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, ExecutionConfig, HingeSide,
+                                   StanceConfig, WindConfig, WorldConfig)
+from door_sim_bridge.world.door import DoorGeometry, door_urdf
+
+
+def test_defaults_are_the_drc_door_and_valid():
+    config = WorldConfig()
+    assert (config.door.width, config.door.height) == (0.914, 2.083)
+    assert config.door.handle_height == 0.91 and config.door.lever_length == 0.11
+    assert math.isclose(config.door.latch_release_angle, 0.52)
+    assert config.stance.distance == 1.2 and config.physics_rate == 240.0
+    assert (config.camera.width, config.camera.height, config.camera.vertical_fov_deg) == (640, 480, 60.0)
+    assert config.camera.depth_noise_coefficient == 0.0 and config.camera.colour_noise_sigma == 0.0
+    assert not config.door.wind.enabled
+    assert config.grasp_distance == 0.02
+
+
+@pytest.mark.parametrize("make, field, allowed", [
+    (lambda: DoorConfig(width=0.2), "DoorConfig.width", "[0.5, 1.5] m"),
+    (lambda: DoorConfig(closer_stiffness=float("nan")), "DoorConfig.closer_stiffness", "[0, 200]"),
+    (lambda: DoorConfig(handle_height=2.0), "DoorConfig.handle_height", "m"),
+    (lambda: DoorConfig(latch_release_angle=1.2), "DoorConfig.latch_release_angle", "rad"),
+    (lambda: StanceConfig(distance=-1.0), "StanceConfig.distance", "[0.3, 8] m"),
+    (lambda: CameraConfig(width=0), "CameraConfig.width", "[16, 4096]"),
+    (lambda: CameraConfig(far=0.15), "CameraConfig.far", "m"),
+    (lambda: WorldConfig(physics_rate=10.0), "WorldConfig.physics_rate", "[60, 2000] Hz"),
+    (lambda: WorldConfig(seed=-1), "WorldConfig.seed", "[0, 2147483647]"),
+    (lambda: WorldConfig(seed=1.5), "WorldConfig.seed", "integer"),
+    (lambda: WindConfig(amplitude=-1.0), "WindConfig.amplitude", "[0, 100] N·m"),
+    (lambda: ExecutionConfig(step_duration=0.0), "ExecutionConfig.step_duration", "s"),
+    (lambda: DoorConfig(opening="push"), "DoorConfig.opening", "push, pull"),
+])
+def test_a_bad_value_names_the_field_and_its_range(make, field, allowed):
+    with pytest.raises(SimulationError) as error:
+        make()
+    assert field in str(error.value) and allowed in str(error.value)
+    assert isinstance(error.value, ValueError)
+
+
+def test_scene_colours_must_be_distinct():
+    with pytest.raises(SimulationError, match="door_colour and DoorConfig.frame_colour"):
+        DoorConfig(door_colour=(0.9, 0.9, 0.9), frame_colour=(0.92, 0.92, 0.9))
+    with pytest.raises(SimulationError, match="handle_colour"):
+        DoorConfig(handle_colour=(1.2, 0.0, 0.0))
+
+
+@pytest.mark.parametrize("opening", list(DoorOpening))
+@pytest.mark.parametrize("hinge_side", list(HingeSide))
+def test_door_geometry_follows_the_convention(opening, hinge_side):
+    door = DoorConfig(opening=opening, hinge_side=hinge_side)
+    geometry = DoorGeometry.from_config(door)
+    side = hinge_side.sign
+    assert geometry.hinge_origin[1] == pytest.approx(side * door.width / 2)
+    assert geometry.hinge_origin[0] == pytest.approx(door.thickness if opening is DoorOpening.PUSH else 0.0)
+    # a positive hinge rotation moves the latch edge towards +x (push) or -x (pull)
+    latch_edge = geometry.face_corners[1]
+    velocity = np.cross(geometry.hinge_axis, latch_edge)
+    assert np.sign(velocity[0]) == (1.0 if opening is DoorOpening.PUSH else -1.0)
+    # the lever points to the hinge side, and a positive turn presses its tip down
+    assert geometry.lever_direction[1] == side
+    assert np.cross(geometry.handle_axis, geometry.lever_direction)[2] < 0
+    # grasp frame: x towards the robot (-x), z up, right-handed
+    rotation = geometry.grasp_in_handle[:3, :3]
+    np.testing.assert_allclose(rotation[:, 0], [-1, 0, 0])
+    np.testing.assert_allclose(rotation[:, 2], [0, 0, 1])
+    assert np.linalg.det(rotation) == pytest.approx(1.0)
+    # the robot-side face is the door plane x = 0
+    face = geometry.face_corners + geometry.hinge_origin
+    np.testing.assert_allclose(face[:, 0], 0.0, atol=1e-12)
+    assert "door_hinge" in door_urdf(door) and "door_handle" in door_urdf(door)

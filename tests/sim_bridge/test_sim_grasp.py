@@ -1,0 +1,105 @@
+"""Grasping the handle (only within 2 cm), turning it and pushing the door open, slipping."""
+
+import numpy as np
+import pytest
+from sim_scenes import GRASP_STANCE, reach_handle, solve_ik, turned_grasp_target
+
+from door_contract.payloads import OutcomeStatus
+from door_robot.kinematics import RobotKinematics
+from door_robot.profile import Side
+from door_sim_bridge.execution import TrajectoryExecution
+from door_sim_bridge.world import DoorWorld, EventKind, WorldConfig
+from door_sim_bridge.world.transforms import translation
+
+HAND = Side.RIGHT  # the default door is hinged on the left: its handle is on the robot's right
+
+
+@pytest.fixture(scope="module")
+def kinematics():
+    with DoorWorld() as world:
+        return RobotKinematics(world.profile)
+
+
+@pytest.fixture
+def world():
+    with DoorWorld(WorldConfig(stance=GRASP_STANCE)) as sim:
+        yield sim
+
+
+def test_grasp_refused_at_5_cm_with_the_distance_in_the_message(world, kinematics):
+    reached = reach_handle(world, kinematics, HAND, offset=np.array([-0.05, 0.0, 0.0]))
+    assert reached.status is OutcomeStatus.SUCCESS
+    distance = world.hand_handle_distance(HAND)
+    assert distance == pytest.approx(0.05, abs=0.004)
+    result = world.grasp(HAND, close=True)
+    assert not result.success and result.distance_m == pytest.approx(distance)
+    assert f"{distance:.3f} m" in result.message and "0.020 m" in result.message
+    assert not world.holding(HAND)
+    assert world.events()[-1].kind is EventKind.GRASP_REFUSED
+
+
+def test_grasp_made_within_2_cm_then_released(world, kinematics):
+    reached = reach_handle(world, kinematics, HAND, offset=np.array([-0.01, 0.0, 0.005]))
+    assert reached.status is OutcomeStatus.SUCCESS
+    result = world.grasp(HAND, close=True)
+    assert result.success and result.distance_m < 0.02
+    assert world.holding(HAND) and not world.holding(Side.LEFT)
+    world.step(60)
+    assert world.holding(HAND) and world.grasp_force(HAND) < world.config.grasp_break_force
+    assert world.grasp(HAND, close=False).success and not world.holding(HAND)
+    assert [e.kind for e in world.events()] == [EventKind.GRASP_CLOSED, EventKind.GRASP_OPENED]
+
+
+def test_hand_turns_the_handle_and_pushes_the_door_open(world, kinematics):
+    """The WPI-CMU sequence: grasp, turn the lever past the latch, push the leaf open."""
+    reach_handle(world, kinematics, HAND)
+    assert world.grasp(HAND, close=True).success
+    grasp_then = world.handle_grasp_pose()
+    tcp_in_grasp = np.linalg.inv(grasp_then) @ world.tcp_pose(HAND)
+    indices = kinematics.arm_indices(HAND)
+    names, q = solve_ik(world, kinematics, HAND, world.tcp_pose(HAND))
+    waypoints = []
+    for turn in np.linspace(0.1, 0.75, 8):  # handle first, then the leaf with the handle held down
+        target = turned_grasp_target(world, grasp_then, tcp_in_grasp, turn)
+        names, q = solve_ik(world, kinematics, HAND, target, q)
+        waypoints.append(q[indices])
+    for swing in np.linspace(0.03, 0.3, 8):
+        target = turned_grasp_target(world, grasp_then, tcp_in_grasp, 0.75, swing)
+        names, q = solve_ik(world, kinematics, HAND, target, q)
+        waypoints.append(q[indices])
+    result = TrajectoryExecution(world, np.linspace(0.3, 4.5, 16), names, np.array(waypoints)).run()
+    assert result.status is OutcomeStatus.SUCCESS, result.reason
+    state = world.door_state()
+    assert not state.latched and state.hinge_angle > np.radians(10.0)
+    assert world.holding(HAND) and not world.slipped(HAND)
+    assert world.hand_handle_distance(HAND) < 0.01
+    assert world.peak_grasp_force(HAND) < 0.5 * world.config.grasp_break_force
+
+
+def test_grasp_slips_when_its_force_exceeds_the_limit(world, kinematics):
+    reach_handle(world, kinematics, HAND)
+    assert world.grasp(HAND, close=True).success
+    world.set_base_pose(world.base_pose() @ translation([-0.15, 0.0, 0.0]))  # yank the robot back
+    world.step(30)
+    assert world.slipped(HAND) and not world.holding(HAND)
+    slip = [e for e in world.events() if e.kind is EventKind.GRASP_SLIPPED]
+    assert len(slip) == 1 and slip[0].side is HAND
+    assert world.door_state().latched  # the lever was not turned
+    assert world.grasp(HAND, close=True).success is False  # the hand is now far from the handle
+
+
+def test_a_slip_during_a_trajectory_ends_it_with_a_failure(kinematics):
+    with DoorWorld(WorldConfig(stance=GRASP_STANCE, grasp_break_force=60.0)) as world:
+        _pull_the_hand_off(world, kinematics)
+
+
+def _pull_the_hand_off(world, kinematics):
+    reach_handle(world, kinematics, HAND)
+    assert world.grasp(HAND, close=True).success
+    positions = world.joint_positions()
+    elbow = world.profile.arm(HAND).joints[5]  # bend the elbow hard: pulls the hand off the lever
+    goal = {elbow: world.joint_limits()[elbow].lower + 0.05}
+    result = TrajectoryExecution(world, [1.0], list(goal), [list(goal.values())]).run()
+    assert result.status is OutcomeStatus.FAILURE and "right grasp slipped" in result.reason
+    assert result.duration_s < 1.0
+    assert world.slipped(HAND) and positions != world.joint_positions()

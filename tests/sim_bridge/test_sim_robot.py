@@ -1,0 +1,98 @@
+"""The robot in PyBullet agrees with Pinocchio; base teleporting; joint targets; head pitch."""
+
+import numpy as np
+import pytest
+
+from door_contract.converters.footsteps import Foot
+from door_robot.kinematics import RobotKinematics
+from door_robot.profile import Side
+from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
+from door_sim_bridge.world.transforms import planar
+
+STANCE = StanceConfig(distance=2.0, lateral_offset=0.35, yaw=0.4)
+
+
+@pytest.fixture(scope="module")
+def world():
+    with DoorWorld(WorldConfig(stance=STANCE)) as sim:
+        yield sim
+
+
+@pytest.fixture(scope="module")
+def kinematics(world):
+    return RobotKinematics(world.profile)
+
+
+def _pinocchio_tcp(world: DoorWorld, kinematics: RobotKinematics, side: Side) -> np.ndarray:
+    positions = world.joint_positions()
+    q = kinematics.configuration({name: positions[name] for name in kinematics.joint_names})
+    return world.base_pose() @ kinematics.frame_pose(q, kinematics.profile.tcp_frame(side))
+
+
+def test_starts_at_the_stance_in_the_nominal_posture(world):
+    base = world.base_pose()
+    np.testing.assert_allclose(base, planar(-2.0, 0.35, 0.4, world.profile.base_height), atol=1e-6)
+    positions = world.joint_positions()
+    for name, value in world.profile.nominal_posture.items():
+        assert positions[name] == pytest.approx(value, abs=1e-6)
+    feet = world.foot_placements()
+    for placement in feet.values():
+        assert placement.yaw == pytest.approx(0.4, abs=1e-6)
+    left, right = feet[Foot.LEFT], feet[Foot.RIGHT]
+    separation = np.hypot(left.x - right.x, left.y - right.y)
+    assert separation == pytest.approx(world.profile.walking.foot_separation, abs=0.01)
+
+
+def test_head_is_pitched_down_to_see_the_handle(world):
+    camera = world.link_pose(world.profile.head_camera_frame)
+    pitch = np.arcsin(-camera[2, 2])  # optical z below the horizon
+    assert pitch == pytest.approx(world.config.camera.head_pitch, abs=0.02)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_tcp_pose_agrees_with_pinocchio(world, kinematics, seed):
+    rng = np.random.default_rng(seed)
+    arm_joints = [j for side in Side for j in world.profile.arm(side).joints]
+    limits = world.joint_limits()
+    posture = {name: rng.uniform(limits[name].lower, limits[name].upper) for name in arm_joints}
+    world.robot.reset_joints(posture)
+    world.set_base_pose(planar(-1.0 + seed, 0.2 * seed, 0.3 * seed - 0.5, world.profile.base_height))
+    for side in Side:
+        ours, reference = world.tcp_pose(side), _pinocchio_tcp(world, kinematics, side)
+        assert np.linalg.norm(ours[:3, 3] - reference[:3, 3]) < 1e-3
+        np.testing.assert_allclose(ours[:3, :3], reference[:3, :3], atol=1e-5)
+
+
+def test_base_pose_round_trips(world):
+    target = planar(0.7, -1.2, 2.5, world.profile.base_height)
+    world.set_base_pose(target)
+    np.testing.assert_allclose(world.base_pose(), target, atol=1e-9)
+    with pytest.raises(SimulationError):
+        world.set_base_pose(np.full((4, 4), np.nan))
+    with pytest.raises(SimulationError):
+        world.set_base_pose(2.0 * target)
+
+
+def test_joint_targets_are_validated_and_clipped(world):
+    with pytest.raises(SimulationError, match="no movable joint 'elbow_of_doom'"):
+        world.set_joint_targets({"elbow_of_doom": 0.0})
+    with pytest.raises(SimulationError, match="NaN"):
+        world.set_joint_targets({"arm_left_4_joint": float("nan")})
+    world.set_joint_targets({"arm_left_4_joint": 5.0})
+    assert world.joint_targets()["arm_left_4_joint"] == world.joint_limits()["arm_left_4_joint"].upper
+
+
+@pytest.mark.parametrize("profile", ["atlas_v4", "drc_hubo"])
+def test_the_seed_papers_robots_work_from_their_profiles(shared_data, profile):
+    """Atlas v4 (head frame x forward) and DRC-HUBO (neck frame turned by pi) look forward-down."""
+    with DoorWorld(WorldConfig(robot_profile=profile, stance=STANCE)) as world:
+        kinematics = RobotKinematics(world.profile)
+        for side in Side:
+            ours, reference = world.tcp_pose(side), _pinocchio_tcp(world, kinematics, side)
+            assert np.linalg.norm(ours[:3, 3] - reference[:3, 3]) < 1e-3
+        optical = world.render().camera_pose
+        forward = world.base_pose()[:3, 0]
+        assert optical[:3, 2] @ forward == pytest.approx(np.cos(world.config.camera.head_pitch), abs=0.02)
+        assert optical[2, 2] == pytest.approx(-np.sin(world.config.camera.head_pitch), abs=0.02)
+        assert optical[:3, 0] @ world.base_pose()[:3, 1] == pytest.approx(-1.0, abs=0.05)  # x right
