@@ -69,6 +69,9 @@ class Topics:
                             frame=Frame.HEAD_CAMERA_OPTICAL.value, unit="m")
     DEPTH_INFO = TopicSpec("/head_camera/depth/camera_info", "sensor_msgs/msg/CameraInfo", SENSOR,
                            "sim_bridge", "depth intrinsics", frame=Frame.HEAD_CAMERA_OPTICAL.value)
+    CAMERA_POSE = TopicSpec("/head_camera/pose", "geometry_msgs/msg/PoseStamped", SENSOR, "sim_bridge",
+                            "head camera optical frame in odom, stamped like its images (tf2 is not "
+                            "on PyPI)", frame=Frame.ODOM.value, unit="m")
     DOOR_JOINT_STATES = TopicSpec("/sim/door_joint_states", "sensor_msgs/msg/JointState", SENSOR,
                                   "sim_bridge", "ground-truth hinge and handle angles "
                                   "(evaluation only)", unit="rad")

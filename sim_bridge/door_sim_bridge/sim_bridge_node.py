@@ -1,20 +1,209 @@
-"""ROS 2 node ``/sim_bridge``: the PyBullet world standing in for the robot."""
+"""ROS 2 node ``/sim_bridge``: the PyBullet world standing in for the robot's hardware.
+
+Steps the :class:`~door_sim_bridge.world.DoorWorld` from a timer (as fast as possible, or
+paced to the wall clock), publishes /clock, joint states, odometry, the head camera and the
+door's ground truth at their rates (simulated time), executes joint trajectories and
+footstep plans one at a time, and serves the hands' grasp services. Every execution ends
+with an ExecutionOutcome on /sim/execution_outcome whose request id is the stamp (ns) of
+the executed message; bad input is rejected there with its reason and moves nothing.
+"""
 
 from __future__ import annotations
 
-from rclpy.node import Node
+import time
 
-from door_contract.node_support import Heartbeat, declare_parameters, run_node
+import numpy as np
+from nav_msgs.msg import Odometry, Path
+from rclpy.node import Node
+from rosgraph_msgs.msg import Clock
+from std_msgs.msg import String
+from std_srvs.srv import SetBool
+from trajectory_msgs.msg import JointTrajectory
+
+from door_contract.converters.camera_info import intrinsics_to_camera_info
+from door_contract.converters.footsteps import path_to_footsteps
+from door_contract.converters.image import array_to_image
+from door_contract.converters.joint_state import positions_to_joint_state
+from door_contract.converters.pose import matrix_to_pose, matrix_to_pose_stamped
+from door_contract.converters.trajectory import msg_to_joint_path
+from door_contract.errors import ContractError, ParameterRangeError
+from door_contract.frames import Frame
+from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
+                                        declare_parameters, run_node)
+from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, encode
+from door_contract.stamps import to_time_msg
+from door_contract.topics import Services, Topics
+from door_robot.profile import Side
+from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS, NODE_NAME
+from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, DoorWorld, HingeSide, StanceConfig,
+                                   WindConfig, WorldConfig)
+from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT
+
+STEPS_PER_TICK = 4
+
+
+def world_config(p: dict) -> WorldConfig:
+    """The world of the node's parameters (SimulationError names a bad field)."""
+    camera_rate = p["camera_rate"] if p["camera_rate"] > 0 else 1.0
+    return WorldConfig(
+        robot_profile=p["robot_profile"], physics_rate=p["physics_rate"], seed=p["seed"],
+        grasp_break_force=p["grasp_break_force"],
+        door=DoorConfig(opening=DoorOpening(p["door_opening"]), hinge_side=HingeSide(p["hinge_side"]),
+                        width=p["door_width"], handle_height=p["handle_height"],
+                        closer_stiffness=p["closer_stiffness"], wind=WindConfig(amplitude=p["wind_amplitude"])),
+        stance=StanceConfig(distance=p["stance_distance"], lateral_offset=p["stance_lateral"], yaw=p["stance_yaw"]),
+        camera=CameraConfig(width=p["camera_width"], height=p["camera_height"], frame_rate_hz=camera_rate,
+                            depth_noise_coefficient=p["depth_noise"], colour_noise_sigma=p["colour_noise"]))
+
+
+class Schedule:
+    """Due times of a periodic publication in simulated time."""
+
+    def __init__(self, rate_hz: float) -> None:
+        self.period = 1.0 / rate_hz if rate_hz > 0 else float("inf")
+        self.next_time = 0.0
+
+    def due(self, now: float) -> bool:
+        if now + 1e-9 < self.next_time:
+            return False
+        self.next_time = max(self.next_time + self.period, now)
+        return True
 
 
 class SimBridgeNode(Node):
     def __init__(self) -> None:
         super().__init__(NODE_NAME)
-        self.parameters = declare_parameters(self, BRIDGE_PARAMETERS)
+        p = declare_parameters(self, BRIDGE_PARAMETERS)
+        self.parameters = p
+        try:
+            self.world = DoorWorld(world_config(p))
+        except SimulationError as error:
+            raise ParameterRangeError(f"simulation: {error}") from None
+        self.schedules = {"clock": Schedule(p["clock_rate"]), "state": Schedule(p["state_rate"]),
+                          "camera": Schedule(p["camera_rate"])}
+        self.execution: tuple[TrajectoryExecution | FootstepExecution, ExecutionKind, int] | None = None
+        self.previous_base: tuple[float, np.ndarray] | None = None
+        self.wall_start = time.monotonic()
         self.heartbeat = Heartbeat(self)
-        self.get_logger().info(f"ready; robot {self.parameters['robot_profile']}, "
-                               f"{self.parameters['physics_rate']:.0f} Hz physics")
+        self._make_interfaces()
+        self.create_timer(0.0 if not p["real_time"] else 1.0 / p["physics_rate"] * STEPS_PER_TICK, self._tick)
+        self.get_logger().info(f"ready: {p['robot_profile']}, {p['door_opening']} door hinged {p['hinge_side']}, "
+                               f"{p['physics_rate']:.0f} Hz physics, {'real time' if p['real_time'] else 'as fast as possible'}")
+
+    def _make_interfaces(self) -> None:
+        pub = lambda topic: create_contract_publisher(self, topic)
+        self.publishers_by_name = {t: pub(getattr(Topics, t)) for t in (
+            "CLOCK", "JOINT_STATES", "ODOM", "COLOR_IMAGE", "COLOR_INFO", "DEPTH_IMAGE", "DEPTH_INFO",
+            "CAMERA_POSE", "DOOR_JOINT_STATES", "EXECUTION_OUTCOME")}
+        create_contract_subscription(self, Topics.ARM_TRAJECTORY, self._on_trajectory)
+        create_contract_subscription(self, Topics.FOOTSTEP_PLAN, self._on_footsteps)
+        for side, spec in ((Side.LEFT, Services.LEFT_GRASP), (Side.RIGHT, Services.RIGHT_GRASP)):
+            self.create_service(SetBool, spec.name, lambda request, response, s=side: self._on_grasp(s, request, response))
+
+    # ------------------------------------------------------------------ commands
+    def _on_trajectory(self, msg: JointTrajectory) -> None:
+        request_id = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+        try:
+            path = msg_to_joint_path(msg)
+        except ContractError as error:
+            self._report(ExecutionOutcome(ExecutionKind.TRAJECTORY, request_id, OutcomeStatus.REJECTED, str(error)))
+            return
+        self._start(TrajectoryExecution.from_joint_path(self.world, path), ExecutionKind.TRAJECTORY, request_id)
+
+    def _on_footsteps(self, msg: Path) -> None:
+        request_id = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+        try:
+            steps = path_to_footsteps(msg)
+        except ContractError as error:
+            self._report(ExecutionOutcome(ExecutionKind.FOOTSTEPS, request_id, OutcomeStatus.REJECTED, str(error)))
+            return
+        self._start(FootstepExecution(self.world, steps), ExecutionKind.FOOTSTEPS, request_id)
+
+    def _start(self, execution, kind: ExecutionKind, request_id: int) -> None:
+        if self.execution is not None:
+            busy = f"busy executing {self.execution[1].value} {self.execution[2]}"
+            self._report(ExecutionOutcome(kind, request_id, OutcomeStatus.REJECTED, busy))
+            return
+        if execution.done:  # rejected while validating: nothing moved
+            self._report(execution.result.outcome(kind, request_id))
+            return
+        self.get_logger().info(f"executing {kind.value} {request_id}")
+        self.execution = (execution, kind, request_id)
+
+    def _on_grasp(self, side: Side, request: SetBool.Request, response: SetBool.Response) -> SetBool.Response:
+        result = self.world.grasp(side, bool(request.data))
+        response.success, response.message = bool(result.success), result.message
+        self.get_logger().info(f"{side.value} hand {'close' if request.data else 'open'}: {result.message}")
+        return response
+
+    def _report(self, outcome: ExecutionOutcome) -> None:
+        self.publishers_by_name["EXECUTION_OUTCOME"].publish(String(data=encode(outcome)))
+        if outcome.status is OutcomeStatus.SUCCESS:
+            self.get_logger().info(f"{outcome.kind.value} {outcome.request_id}: success in {outcome.duration_s:.2f} s")
+        else:
+            self.get_logger().warning(f"{outcome.kind.value} {outcome.request_id}: {outcome.status.value}: "
+                                      f"{outcome.reason}")
+
+    # ------------------------------------------------------------------ the loop
+    def _tick(self) -> None:
+        if self.parameters["real_time"] and self.world.time > time.monotonic() - self.wall_start:
+            return
+        for _ in range(STEPS_PER_TICK):
+            if self.execution is not None and self.execution[0].command():
+                execution, kind, request_id = self.execution
+                self.execution = None
+                self._report(execution.result.outcome(kind, request_id))
+            self.world.step()
+            self._publish_due()
+
+    def _publish_due(self) -> None:
+        now = self.world.time
+        if self.schedules["clock"].due(now):
+            self.publishers_by_name["CLOCK"].publish(Clock(clock=to_time_msg(now)))
+        if self.schedules["state"].due(now):
+            self._publish_state(now)
+        if self.parameters["camera_rate"] > 0 and self.schedules["camera"].due(now):
+            self._publish_camera()
+
+    def _publish_state(self, now: float) -> None:
+        states = self.world.joint_states()
+        msg = positions_to_joint_state(dict(zip(states.names, states.positions)), stamp=now,
+                                       velocities=dict(zip(states.names, states.velocities)))
+        self.publishers_by_name["JOINT_STATES"].publish(msg)
+        base = self.world.base_pose()
+        odom = Odometry()
+        odom.header.stamp, odom.header.frame_id = to_time_msg(now), Frame.ODOM.value
+        odom.child_frame_id = Frame.BASE_LINK.value
+        odom.pose.pose = matrix_to_pose(base)
+        if self.previous_base is not None and now > self.previous_base[0]:
+            velocity = (base[:3, 3] - self.previous_base[1][:3, 3]) / (now - self.previous_base[0])
+            odom.twist.twist.linear.x, odom.twist.twist.linear.y, odom.twist.twist.linear.z = (float(v) for v in velocity)
+        self.previous_base = (now, base)
+        self.publishers_by_name["ODOM"].publish(odom)
+        door = self.world.door_state()
+        self.publishers_by_name["DOOR_JOINT_STATES"].publish(positions_to_joint_state(
+            {HINGE_JOINT: door.hinge_angle, HANDLE_JOINT: door.handle_angle}, stamp=now,
+            velocities={HINGE_JOINT: door.hinge_velocity, HANDLE_JOINT: door.handle_velocity}))
+        self.heartbeat.update(self.heartbeat.health, "running", sim_time=round(now, 2),
+                              real_time_factor=round(now / max(time.monotonic() - self.wall_start, 1e-6), 2),
+                              executing=self.execution[1].value if self.execution else "-")
+
+    def _publish_camera(self) -> None:
+        frame = self.world.render()
+        frame_id = Frame.HEAD_CAMERA_OPTICAL.value
+        info = intrinsics_to_camera_info(frame.intrinsics, frame_id, frame.time)
+        depth = np.where(np.isfinite(frame.depth), frame.depth, np.nan).astype(np.float32)
+        self.publishers_by_name["CAMERA_POSE"].publish(matrix_to_pose_stamped(frame.camera_pose, Frame.ODOM.value, frame.time))
+        self.publishers_by_name["COLOR_IMAGE"].publish(array_to_image(np.ascontiguousarray(frame.rgb), "rgb8", frame_id, frame.time))
+        self.publishers_by_name["COLOR_INFO"].publish(info)
+        self.publishers_by_name["DEPTH_IMAGE"].publish(array_to_image(depth, "32FC1", frame_id, frame.time))
+        self.publishers_by_name["DEPTH_INFO"].publish(info)
+
+    def destroy_node(self) -> None:
+        self.world.close()
+        super().destroy_node()
 
 
 def main(args: list[str] | None = None) -> int:

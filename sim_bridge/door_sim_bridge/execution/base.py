@@ -28,10 +28,11 @@ class ExecutionResult:
     status: OutcomeStatus
     reason: str = ""
     duration_s: float = 0.0
+    slipped: bool = False  # ended because a hand slipped off the handle
 
     def outcome(self, kind: ExecutionKind, request_id: int) -> ExecutionOutcome:
         """The contract's payload for ``/sim/execution_outcome``."""
-        return ExecutionOutcome(kind, request_id, self.status, self.reason, self.duration_s)
+        return ExecutionOutcome(kind, request_id, self.status, self.reason, self.duration_s, self.slipped)
 
 
 class ExecutionPhase(str, Enum):
@@ -100,8 +101,8 @@ class Execution(ABC):
         self.phase = ExecutionPhase.FINISHED
         self.result = ExecutionResult(OutcomeStatus.REJECTED, reason, 0.0)
 
-    def _finish(self, status: OutcomeStatus, reason: str = "") -> None:
-        self.result = ExecutionResult(status, reason, self.elapsed)
+    def _finish(self, status: OutcomeStatus, reason: str = "", slipped: bool = False) -> None:
+        self.result = ExecutionResult(status, reason, self.elapsed, slipped)
         self.phase = ExecutionPhase.FINISHED
 
     def _slip_since_start(self) -> SimEvent | None:

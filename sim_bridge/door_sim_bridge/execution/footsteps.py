@@ -146,7 +146,7 @@ class FootstepExecution(Execution):
             return
         slip = self._slip_since_start()
         if slip is not None:
-            self._finish(OutcomeStatus.FAILURE, f"grasp slipped at t = {slip.time:.2f} s while walking")
+            self._finish(OutcomeStatus.FAILURE, f"grasp slipped at t = {slip.time:.2f} s while walking", slipped=True)
             return
         tau = (self.elapsed - self._index * self._step_duration) / self._step_duration
         if tau >= 1.0:

@@ -178,7 +178,7 @@ class TrajectoryExecution(Execution):
         if slip is not None:
             self._hold()
             hand = f"{slip.side.value} " if slip.side is not None else ""
-            self._finish(OutcomeStatus.FAILURE, f"{hand}grasp slipped at t = {slip.time:.2f} s")
+            self._finish(OutcomeStatus.FAILURE, f"{hand}grasp slipped at t = {slip.time:.2f} s", slipped=True)
             return
         lookahead = self.elapsed + self.world.config.time_step
         if lookahead < self._end_time:

@@ -6,9 +6,19 @@ NODE_NAME = "trajectory_optimizer"
 
 OPTIMIZER_PARAMETERS = (
     ParameterSpec("robot_profile", "talos", "robot profile (params/robot_<name>.yaml)"),
-    ParameterSpec("backend", "sqp", "optimiser: TrajOpt-style SQP (seed 001) or constrained CHOMP "
-                  "(seed 000)", choices=("sqp", "chomp")),
-    ParameterSpec("waypoints", 20, "waypoints per motion", minimum=3, maximum=500),
+    ParameterSpec("backend", "sqp", "default optimiser: TrajOpt-style SQP (seed 001) or constrained "
+                  "CHOMP (seed 000); a request may choose", choices=("sqp", "chomp")),
+    ParameterSpec("waypoints", 16, "waypoints per motion", minimum=4, maximum=200),
     ParameterSpec("velocity_scale", 0.5, "fraction of the URDF joint velocity limits used",
                   minimum=0.01, maximum=1.0),
+    ParameterSpec("initial_guesses", 3, "initial guesses tried per motion (seed 001: multiple random)",
+                  minimum=1, maximum=20),
+    ParameterSpec("handle_turn", 0.8, "handle turn angle (seed 001: ~80°; the sim handle stops at 1.0)",
+                  unit="rad", minimum=0.1, maximum=1.0),
+    ParameterSpec("push_angle", 0.3, "door angle the arm pushes to", unit="rad", minimum=0.05, maximum=1.5),
+    ParameterSpec("pull_angle", 0.6, "door angle the arm pulls to (seed 001: ~40°)", unit="rad",
+                  minimum=0.05, maximum=1.5),
+    ParameterSpec("lever_radius", 0.066, "lever axis to grasp point", unit="m", minimum=0.0, maximum=0.2),
+    ParameterSpec("state_timeout", 1.0, "joint states / odometry older than this are stale", unit="s",
+                  minimum=0.05, maximum=60.0),
 )

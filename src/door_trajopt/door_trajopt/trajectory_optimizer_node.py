@@ -1,19 +1,152 @@
-"""ROS 2 node ``/trajectory_optimizer``: door motions as optimised joint trajectories."""
+"""ROS 2 node ``/trajectory_optimizer``: door motions as optimised joint trajectories.
+
+A :class:`~door_contract.payloads.MotionRequest` names the motion; the node takes the last
+door estimate, joint states and odometry, plans with the motion library (SQP or
+constrained CHOMP), publishes the time-parameterised trajectory on
+``/trajectory_optimizer/trajectory`` and then a PlanningOutcome (cost, max violation,
+iterations, time, the trajectory's stamp, the door angle it ends at). Missing, stale or
+non-finite inputs and infeasible plans give a failure outcome naming the reason.
+"""
 
 from __future__ import annotations
 
+import numpy as np
+from nav_msgs.msg import Odometry
 from rclpy.node import Node
+from sensor_msgs.msg import JointState
+from std_msgs.msg import String
 
-from door_contract.node_support import Heartbeat, declare_parameters, run_node
+from door_contract.converters.diagnostics import Health
+from door_contract.converters.joint_state import joint_state_to_positions
+from door_contract.converters.pose import pose_to_matrix
+from door_contract.converters.trajectory import joint_path_to_msg
+from door_contract.errors import ContractError
+from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
+                                        declare_parameters, run_node)
+from door_contract.payloads import DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, decode, encode
+from door_contract.topics import Topics
+from door_robot.errors import RobotModelError
+from door_robot.kinematics import RobotKinematics
+from door_robot.profile import Side, load_profile
+from door_trajopt.chain import ArmChain
+from door_trajopt.door_model import door_model_from_estimate
+from door_trajopt.library import Backend, MotionLibrary, MotionPlan
+from door_trajopt.motions import Motion, MotionOptions, MotionSetup, start_door_for, support_polygon
 from door_trajopt.parameters import NODE_NAME, OPTIMIZER_PARAMETERS
+
+
+class PlanningRefused(Exception):
+    """A request that cannot be planned (bad or missing input); the message says why."""
 
 
 class TrajectoryOptimizerNode(Node):
     def __init__(self) -> None:
         super().__init__(NODE_NAME)
-        self.parameters = declare_parameters(self, OPTIMIZER_PARAMETERS)
+        p = declare_parameters(self, OPTIMIZER_PARAMETERS)
+        self.parameters = p
+        self.kinematics = RobotKinematics(load_profile(p["robot_profile"]))
+        self.library = MotionLibrary(MotionOptions(
+            waypoints=p["waypoints"], handle_turn=p["handle_turn"], push_angle=p["push_angle"],
+            pull_angle=p["pull_angle"]), starts=p["initial_guesses"], velocity_scale=p["velocity_scale"])
+        self.lever_radius = p["lever_radius"]
+        self.joint_positions: dict[str, float] | None = None
+        self.base_pose: np.ndarray | None = None
+        self.door: DoorEstimate | None = None
         self.heartbeat = Heartbeat(self)
-        self.get_logger().info(f"ready; backend {self.parameters['backend']}")
+        self.trajectory_pub = create_contract_publisher(self, Topics.MOTION_PROPOSAL)
+        self.outcome_pub = create_contract_publisher(self, Topics.MOTION_OUTCOME)
+        create_contract_subscription(self, Topics.JOINT_STATES, self._on_joint_states)
+        create_contract_subscription(self, Topics.ODOM, self._on_odom)
+        create_contract_subscription(self, Topics.DOOR_ESTIMATE, self._on_door)
+        create_contract_subscription(self, Topics.MOTION_REQUEST, self._on_request)
+        self.get_logger().info(f"ready: {p['robot_profile']}, default backend {p['backend']}")
+
+    def _on_joint_states(self, msg: JointState) -> None:
+        try:
+            self.joint_positions = joint_state_to_positions(msg)
+        except ContractError as error:
+            self.joint_positions = None
+            self.get_logger().warning(f"joint states rejected: {error}")
+
+    def _on_odom(self, msg: Odometry) -> None:
+        try:
+            self.base_pose = pose_to_matrix(msg.pose.pose)
+        except ContractError as error:
+            self.base_pose = None
+            self.get_logger().warning(f"odometry rejected: {error}")
+
+    def _on_door(self, msg: String) -> None:
+        try:
+            self.door = decode(DoorEstimate, msg.data)
+        except ContractError as error:
+            self.get_logger().warning(f"door estimate rejected: {error}")
+
+    def _on_request(self, msg: String) -> None:
+        try:
+            request = decode(MotionRequest, msg.data)
+        except ContractError as error:
+            self.get_logger().warning(f"motion request rejected: {error}")
+            return
+        try:
+            plan = self._plan(request)
+        except (PlanningRefused, RobotModelError, ContractError, ValueError) as error:
+            self._answer(request, OutcomeStatus.REJECTED, str(error))
+            return
+        if not plan.succeeded:
+            result = plan.result
+            reason = (f"{result.outcome.value}: constraint '{result.violated_constraint}' violated by "
+                      f"{result.max_violation:.3g} after {plan.attempts} initial guesses")
+            self._answer(request, OutcomeStatus.FAILURE, reason, plan)
+            return
+        trajectory = joint_path_to_msg(plan.path)
+        trajectory.header.stamp = self.get_clock().now().to_msg()
+        self.trajectory_pub.publish(trajectory)
+        stamp_ns = trajectory.header.stamp.sec * 1_000_000_000 + trajectory.header.stamp.nanosec
+        self._answer(request, OutcomeStatus.SUCCESS, "", plan, stamp_ns=stamp_ns)
+
+    def _plan(self, request: MotionRequest) -> MotionPlan:
+        try:
+            motion = Motion(request.motion)
+        except ValueError:
+            raise PlanningRefused(f"unknown motion {request.motion!r}; known: "
+                                  + ", ".join(m.value for m in Motion)) from None
+        if self.door is None:
+            raise PlanningRefused("no door estimate yet")
+        if self.joint_positions is None or self.base_pose is None:
+            raise PlanningRefused("no valid joint states / odometry yet")
+        backend = Backend(request.backend or self.parameters["backend"])
+        body_q = self.kinematics.configuration(
+            {k: v for k, v in self.joint_positions.items() if k in self.kinematics.joint_names})
+        hand = Side(self.door.hinge_side.grasp_hand)
+        side = hand.other if motion.uses_other_arm else hand
+        chain = ArmChain(self.kinematics, side, body_q)
+        door = door_model_from_estimate(self.door, np.linalg.inv(self.base_pose),
+                                        push=request.opening == "push", lever_radius=self.lever_radius)
+        setup = MotionSetup(chain, door, self.door.width, support_polygon(chain),
+                            start_door_for(motion, request.door_angle, self.library.options))
+        self.get_logger().info(f"planning {motion.value} with the {side.value} arm ({backend.value})")
+        return self.library.plan(motion, setup, chain.chain_of(body_q), backend)
+
+    def _answer(self, request: MotionRequest, status: OutcomeStatus, reason: str,
+                plan: MotionPlan | None = None, stamp_ns: int = -1) -> None:
+        details = {"stamp_ns": stamp_ns}
+        if plan is not None:
+            result = plan.result
+            details.update(cost=round(result.cost, 6), max_violation=float(f"{result.max_violation:.3g}"),
+                           iterations=result.iterations, attempts=plan.attempts,
+                           door_angle=round(plan.final_door[0], 5),
+                           duration_s=round(float(plan.path.times[-1]), 3) if plan.path else 0.0)
+        outcome = PlanningOutcome(request.request_id, status, reason,
+                                  plan.planning_time_s if plan else 0.0, details)
+        self.outcome_pub.publish(String(data=encode(outcome)))
+        line = f"request {request.request_id} ({request.motion}): {status.value}"
+        if status is OutcomeStatus.SUCCESS:  # rclpy forbids one call site logging at two severities
+            self.get_logger().info(f"{line} in {plan.planning_time_s * 1000:.0f} ms")
+        else:
+            self.get_logger().warning(f"{line}: {reason}")
+        self.heartbeat.update(Health.OK if status is OutcomeStatus.SUCCESS else Health.WARN,
+                              f"last: {request.motion} {status.value}",
+                              last_planning_ms=round(plan.planning_time_s * 1000.0, 1) if plan else "-")
 
 
 def main(args: list[str] | None = None) -> int:

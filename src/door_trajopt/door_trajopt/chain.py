@@ -1,0 +1,81 @@
+"""One arm chain (torso + arm joints of a side) of the robot, with the rest of the body fixed.
+
+The optimiser's robot DOFs are the chain's joints; every other joint stays at the
+configuration the chain was built from (the measured posture). Wraps
+:class:`door_robot.kinematics.RobotKinematics` so callers speak in chain vectors.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from door_robot.kinematics import RobotKinematics
+from door_robot.profile import Side
+
+
+@dataclass
+class ArmChain:
+    kinematics: RobotKinematics
+    side: Side
+    body_q: np.ndarray  # full configuration of the joints outside the chain
+    indices: np.ndarray = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.indices = self.kinematics.arm_indices(self.side)
+
+    @property
+    def joint_names(self) -> tuple[str, ...]:
+        return self.kinematics.profile.arm(self.side).joints
+
+    @property
+    def size(self) -> int:
+        return int(self.indices.size)
+
+    @property
+    def tcp_frame(self) -> str:
+        return self.kinematics.profile.tcp_frame(self.side)
+
+    @property
+    def elbow_frame(self) -> str:
+        """Body frame of the elbow joint: the 4th-from-last joint of a 7-DOF arm chain."""
+        model = self.kinematics.model
+        joint_id = model.getJointId(self.joint_names[self.size - 4])
+        return next(f.name for f in model.frames if f.parentJoint == joint_id and f.type.name == "BODY")
+
+    @property
+    def lower(self) -> np.ndarray:
+        return self.kinematics.lower_limits[self.indices]
+
+    @property
+    def upper(self) -> np.ndarray:
+        return self.kinematics.upper_limits[self.indices]
+
+    @property
+    def velocity_limits(self) -> np.ndarray:
+        return self.kinematics.velocity_limits[self.indices]
+
+    def full(self, chain_q: np.ndarray) -> np.ndarray:
+        q = self.body_q.copy()
+        q[self.indices] = chain_q
+        return q
+
+    def chain_of(self, full_q: np.ndarray) -> np.ndarray:
+        return np.asarray(full_q)[self.indices].copy()
+
+    def tcp_pose(self, chain_q: np.ndarray) -> np.ndarray:
+        return self.kinematics.frame_pose(self.full(chain_q), self.tcp_frame)
+
+    def tcp_jacobian(self, chain_q: np.ndarray) -> np.ndarray:
+        """6×k: rows (linear, angular) world-aligned, columns the chain joints."""
+        return self.kinematics.frame_jacobian(self.full(chain_q), self.tcp_frame)[:, self.indices]
+
+    def point_and_jacobian(self, chain_q: np.ndarray, frame: str) -> tuple[np.ndarray, np.ndarray]:
+        q = self.full(chain_q)
+        return (self.kinematics.frame_pose(q, frame)[:3, 3],
+                self.kinematics.frame_jacobian(q, frame)[:3, self.indices])
+
+    def com_and_jacobian(self, chain_q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        q = self.full(chain_q)
+        return self.kinematics.center_of_mass(q), self.kinematics.com_jacobian(q)[:, self.indices]

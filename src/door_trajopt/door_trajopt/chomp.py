@@ -1,0 +1,395 @@
+r"""Constrained CHOMP (seed 000 Sec. II-B, after Zucker et al.'s CHOMP).
+
+Each iteration minimises the linearised Lagrangian of seed 000 eq. (4),
+
+.. math::
+
+    \min_\delta\; \delta^T \nabla f(\xi) + \frac{1}{2\alpha} \delta^T M \delta
+    \quad\text{s.t.}\quad h(\xi) + H \delta = 0,
+
+whose solution is seed 000 eq. (5):
+
+.. math::
+
+    \delta = \alpha M^{-1} (H^T Q H M^{-1} - I) \nabla f(\xi) - M^{-1} H^T Q\, h(\xi),
+    \qquad Q = (H M^{-1} H^T)^{-1}.
+
+It is evaluated as :math:`y = M^{-1}\nabla f`, :math:`Z = M^{-1} H^T`,
+:math:`S = H Z` (``k x k``, dense Cholesky -- the 181 x 181 solve that took
+seed 000 most of its 40 s), multipliers :math:`\lambda = S^{-1}(h/\alpha - H y)`
+and :math:`\delta = -\alpha (y + Z\lambda)` -- algebraically identical to
+eq. (5), and never forming :math:`M^{-1}`.  The metric ``M`` is seed 000's
+``A`` (plus the constant posture Hessian when a posture cost is present),
+factorised **once** per problem with banded Cholesky per DOF block
+(:mod:`door_trajopt.banded`); least-squares (``Q3``) costs add their
+Gauss-Newton term ``w J^T J`` through a Woodbury update of that factor.
+
+Extensions over the seed (which has neither inequalities nor limits):
+
+* joint limits and inequality constraints ``g <= 0`` join ``H`` as active
+  rows of a working set (added when a step would cross them, released when
+  their multiplier turns negative); iterates are finally clipped to the box;
+* steps are accepted on the exact l1 merit (:mod:`door_trajopt.evaluation`,
+  penalty ``1.5 max |lambda|``) with Armijo backtracking, after trying a
+  cheap second-order correction :math:`-M^{-1} H^T S^{-1} h(\xi + \delta)`
+  that reuses the factor of ``S``.
+
+The run stops, as in the seed, when the objective stops decreasing while
+``max |h| <= constraint_tolerance``.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+import scipy.sparse as sp
+from scipy.linalg import LinAlgError, cho_factor, cho_solve
+
+from door_trajopt.banded import KroneckerBandedCholesky, LowRankUpdatedMetric, MetricSolver
+from door_trajopt.constraints import NonFiniteValueError
+from door_trajopt.evaluation import (
+    PointModel,
+    PointValues,
+    ProblemEvaluator,
+    RunSummary,
+    build_result,
+)
+from door_trajopt.problem import FloatArray, TrajectoryProblem
+from door_trajopt.result import OptimizationResult, invalid_guess_reason, invalid_input_result
+from door_trajopt.validation import require_in_range, require_int_at_least
+
+IntArray = npt.NDArray[np.int64]
+REGULARISATIONS = (0.0, 1e-12, 1e-9, 1e-6)
+"""Relative diagonal shifts tried when ``S = H M^{-1} H^T`` is (near) singular."""
+
+
+@dataclass(frozen=True)
+class ChompOptions:
+    """Options of :class:`ChompSolver` (seed 000 Sec. II-B).
+
+    * ``step_size`` -- ``alpha`` of eq. (4)-(5), dimensionless, ``(0, 1]``;
+      ``1`` is the full Newton step of the quadratic part.
+    * ``max_iterations`` -- iteration cap, ``>= 1``.
+    * ``constraint_tolerance`` -- feasibility threshold on ``max |h_i|`` and
+      ``max g_i`` in the constraints' units (m, rad), ``(0, 1]``.
+    * ``cost_tolerance`` -- relative objective decrease below which the
+      objective has "stopped decreasing", ``[0, 1)``.
+    * ``max_backtracks`` -- step halvings per iteration, ``>= 0``.
+    * ``active_set_iterations`` -- working-set updates per iteration, ``>= 1``.
+    * ``armijo`` -- sufficient-decrease fraction of the merit, ``(0, 0.5)``.
+    * ``second_order_correction`` -- try the projection back onto ``h = 0``.
+    """
+
+    step_size: float = 1.0
+    max_iterations: int = 300
+    constraint_tolerance: float = 1e-8
+    cost_tolerance: float = 1e-10
+    max_backtracks: int = 12
+    active_set_iterations: int = 10
+    armijo: float = 1e-4
+    second_order_correction: bool = True
+
+    def __post_init__(self) -> None:
+        owner = type(self).__name__
+        require_in_range(owner, "step_size", self.step_size, 0.0, 1.0, low_open=True)
+        require_int_at_least(owner, "max_iterations", self.max_iterations, 1)
+        require_in_range(
+            owner, "constraint_tolerance", self.constraint_tolerance, 0.0, 1.0, low_open=True
+        )
+        require_in_range(owner, "cost_tolerance", self.cost_tolerance, 0.0, 1.0, high_open=True)
+        require_int_at_least(owner, "max_backtracks", self.max_backtracks, 0)
+        require_int_at_least(owner, "active_set_iterations", self.active_set_iterations, 1)
+        require_in_range(owner, "armijo", self.armijo, 0.0, 0.5, low_open=True, high_open=True)
+
+
+@dataclass(frozen=True)
+class WorkingSet:
+    """Inequality rows and joint-limit variables treated as equalities this step."""
+
+    inequality_rows: IntArray
+    upper: IntArray
+    lower: IntArray
+
+    def merged(self, other: WorkingSet) -> WorkingSet:
+        """Union of two working sets."""
+        return WorkingSet(
+            np.union1d(self.inequality_rows, other.inequality_rows),
+            np.union1d(self.upper, other.upper),
+            np.union1d(self.lower, other.lower),
+        )
+
+    def without(self, inequality: IntArray, upper: IntArray, lower: IntArray) -> WorkingSet:
+        """Working set with the given members released."""
+        return WorkingSet(
+            np.setdiff1d(self.inequality_rows, inequality),
+            np.setdiff1d(self.upper, upper),
+            np.setdiff1d(self.lower, lower),
+        )
+
+    @property
+    def is_empty(self) -> bool:
+        """Whether nothing is in the set."""
+        return not (self.inequality_rows.size or self.upper.size or self.lower.size)
+
+
+@dataclass(frozen=True)
+class ActiveSystem:
+    """Rows ``H_w`` and values ``h_w`` of equalities plus the working set."""
+
+    jacobian: sp.csr_matrix
+    values: FloatArray
+    working: WorkingSet
+    n_equality: int
+
+
+@dataclass(frozen=True)
+class ConstrainedStep:
+    """Solution of the eq. (4) subproblem: ``delta``, ``lambda`` and reusable factors."""
+
+    step: FloatArray
+    multipliers: FloatArray
+    schur_factor: tuple[FloatArray, bool] | None
+    system: ActiveSystem
+    metric: MetricSolver
+
+
+def robust_cholesky(schur: FloatArray) -> tuple[FloatArray, bool]:
+    """Cholesky of ``S``; shifts the diagonal if ``H`` is rank deficient."""
+    scale = max(float(np.mean(np.diag(schur))), np.finfo(float).tiny)
+    for shift in REGULARISATIONS:
+        try:
+            return cho_factor(schur + shift * scale * np.eye(schur.shape[0]))
+        except LinAlgError:
+            continue
+    return cho_factor(schur + scale * np.eye(schur.shape[0]))
+
+
+def unit_rows(indices: IntArray, sign: float, n_variables: int) -> sp.csr_matrix:
+    """Rows ``sign * e_i^T`` for joint-limit variables."""
+    rows = np.arange(indices.size)
+    data = np.full(indices.size, sign)
+    return sp.csr_matrix((data, (rows, indices)), shape=(indices.size, n_variables))
+
+
+class ChompSolver:
+    """Constrained CHOMP for one problem; ``M`` is factorised in the constructor."""
+
+    def __init__(self, problem: TrajectoryProblem, options: ChompOptions | None = None) -> None:
+        self._options = options if options is not None else ChompOptions()
+        self._evaluator = ProblemEvaluator.for_problem(problem)
+        self._metric: KroneckerBandedCholesky = self._evaluator.objective.metric_factor()
+        self._lower = self._evaluator.lower_bounds()
+        self._upper = self._evaluator.upper_bounds()
+        self._pinned = self._evaluator.pinned_variables()
+
+    @property
+    def options(self) -> ChompOptions:
+        """The validated options."""
+        return self._options
+
+    def solve(self, initial_guess: FloatArray) -> OptimizationResult:
+        """Optimise from an ``(n, m)`` guess (projected onto the joint limits).
+
+        Never raises for a bad guess or NaN/inf callback values: those give
+        ``Outcome.INVALID_INPUT`` with the reason in ``message``.
+        """
+        started = time.perf_counter()
+        reason = invalid_guess_reason(self._evaluator.problem, initial_guess)
+        if reason is not None:
+            return invalid_input_result(initial_guess, reason, time.perf_counter() - started)
+        try:
+            return self._run(np.asarray(initial_guess, dtype=np.float64), started)
+        except NonFiniteValueError as error:
+            return invalid_input_result(initial_guess, str(error), time.perf_counter() - started)
+
+    def _run(self, guess: FloatArray, started: float) -> OptimizationResult:
+        evaluator, options = self._evaluator, self._options
+        values = evaluator.values(evaluator.clip_to_limits(evaluator.problem.free_vector(guess)))
+        penalty, iteration, converged, note = 0.0, 0, False, ""
+        while iteration < options.max_iterations and not converged:
+            iteration += 1
+            model = evaluator.model(values)
+            step = self._working_set_step(model, self._iteration_metric(values))
+            penalty = max(penalty, 1.5 * float(np.max(np.abs(step.multipliers), initial=0.0)))
+            accepted = self._line_search(model, step, penalty)
+            if accepted is None:
+                converged, note = True, self._stall_note(model, step, penalty)
+            else:
+                converged = self._stopped_decreasing(values, accepted)
+                values = accepted
+        summary = RunSummary(values, converged, iteration, started, note)
+        return build_result(evaluator, summary, options.constraint_tolerance)
+
+    def _stall_note(self, model: PointModel, step: ConstrainedStep, penalty: float) -> str:
+        """Empty at a stationary point, else why the line search gave up."""
+        if self._merit_slope(model, step, penalty) >= 0.0:
+            return ""
+        return "stalled: no merit decrease along the constrained CHOMP step"
+
+    def _stopped_decreasing(self, previous: PointValues, current: PointValues) -> bool:
+        """Seed 000's rule: objective no longer decreasing and ``h`` feasible."""
+        decrease = previous.cost - current.cost
+        threshold = self._options.cost_tolerance * max(1.0, abs(current.cost))
+        feasible = self._evaluator.violation(current).amount <= self._options.constraint_tolerance
+        return feasible and decrease <= threshold
+
+    # --- working set --------------------------------------------------------
+
+    def _initial_working_set(self, model: PointModel) -> WorkingSet:
+        free = model.values.free
+        tolerance = self._options.constraint_tolerance
+        return WorkingSet(
+            np.flatnonzero(model.values.inequality >= -tolerance),
+            self._limit_candidates(free >= self._upper - tolerance),
+            self._limit_candidates(free <= self._lower + tolerance),
+        )
+
+    def _limit_candidates(self, mask: npt.NDArray[np.bool_]) -> IntArray:
+        """Variables flagged by ``mask``, except those pinned by an equality row."""
+        return np.setdiff1d(np.flatnonzero(mask), self._pinned)
+
+    def _active_system(self, model: PointModel, working: WorkingSet) -> ActiveSystem:
+        n_variables = model.values.free.size
+        blocks = [
+            model.equality_jacobian,
+            model.inequality_jacobian[working.inequality_rows],
+            unit_rows(working.upper, 1.0, n_variables),
+            unit_rows(working.lower, -1.0, n_variables),
+        ]
+        jacobian = sp.vstack(blocks, format="csr")
+        values = self._active_values(model.values, working)
+        return ActiveSystem(jacobian, values, working, model.values.equality.size)
+
+    def _active_values(self, values: PointValues, working: WorkingSet) -> FloatArray:
+        """``h_w``: equalities, working inequalities and working joint limits."""
+        free = values.free
+        return np.concatenate(
+            [
+                values.equality,
+                values.inequality[working.inequality_rows],
+                free[working.upper] - self._upper[working.upper],
+                self._lower[working.lower] - free[working.lower],
+            ]
+        )
+
+    def _iteration_metric(self, values: PointValues) -> MetricSolver:
+        """``M``, plus the Gauss-Newton term of ``Q3`` residuals via Woodbury."""
+        residuals = self._evaluator.objective.residual_models(values.free)
+        if not residuals:
+            return self._metric
+        scaled = [np.sqrt(r.weight) * r.jacobian for r in residuals]
+        return LowRankUpdatedMetric.build(self._metric, sp.vstack(scaled, format="csr"))
+
+    def _working_set_step(self, model: PointModel, metric: MetricSolver) -> ConstrainedStep:
+        """Solve eq. (5) and update the working set until it is consistent."""
+        working = self._initial_working_set(model)
+        step = self._constrained_step(model, self._active_system(model, working), metric)
+        for _ in range(self._options.active_set_iterations - 1):
+            updated = self._updated_working_set(model, step)
+            if updated is None:
+                break
+            step = self._constrained_step(model, self._active_system(model, updated), metric)
+        return step
+
+    def _updated_working_set(self, model: PointModel, step: ConstrainedStep) -> WorkingSet | None:
+        """Release rows with negative multipliers, else add blocking ones."""
+        working = step.system.working
+        released = self._released(step)
+        if released is not None:
+            return working.without(*released)
+        blocking = self._blocking(model, step.step)
+        if blocking.is_empty:
+            return None
+        return working.merged(blocking)
+
+    def _released(self, step: ConstrainedStep) -> tuple[IntArray, IntArray, IntArray] | None:
+        working = step.system.working
+        sizes = np.cumsum(
+            [step.system.n_equality, working.inequality_rows.size, working.upper.size]
+        )
+        inequality, upper, lower = np.split(step.multipliers[sizes[0] :], sizes[1:] - sizes[0])
+        release = (
+            working.inequality_rows[inequality < 0.0],
+            working.upper[upper < 0.0],
+            working.lower[lower < 0.0],
+        )
+        return release if any(part.size for part in release) else None
+
+    def _blocking(self, model: PointModel, delta: FloatArray) -> WorkingSet:
+        tolerance = self._options.constraint_tolerance
+        trial = model.values.free + delta
+        linearised = model.values.inequality + model.inequality_jacobian @ delta
+        return WorkingSet(
+            np.flatnonzero(linearised > tolerance),
+            self._limit_candidates(trial > self._upper + tolerance),
+            self._limit_candidates(trial < self._lower - tolerance),
+        )
+
+    # --- eq. (5) ------------------------------------------------------------
+
+    def _constrained_step(
+        self, model: PointModel, system: ActiveSystem, metric: MetricSolver
+    ) -> ConstrainedStep:
+        """``delta = -alpha M^{-1} (grad f + H^T lambda)``, i.e. seed 000 eq. (5)."""
+        alpha = self._options.step_size
+        descent = metric.solve(model.gradient)
+        if system.values.size == 0:
+            return ConstrainedStep(-alpha * descent, np.zeros(0), None, system, metric)
+        basis = metric.solve(system.jacobian.T.toarray())
+        factor = robust_cholesky(np.asarray(system.jacobian @ basis))
+        rhs = system.values / alpha - system.jacobian @ descent
+        multipliers = cho_solve(factor, rhs)
+        step = -alpha * (descent + basis @ multipliers)
+        return ConstrainedStep(step, multipliers, factor, system, metric)
+
+    # --- globalisation --------------------------------------------------------
+
+    def _line_search(
+        self, model: PointModel, step: ConstrainedStep, penalty: float
+    ) -> PointValues | None:
+        """Backtracking on the l1 merit, after a second-order correction attempt."""
+        current = model.values
+        slope = self._merit_slope(model, step, penalty)
+        if slope >= 0.0:
+            return None
+        reference = current.merit(penalty)
+        scale = 1.0
+        for attempt in range(self._options.max_backtracks + 1):
+            trial = self._trial(current.free + scale * step.step)
+            if trial.merit(penalty) <= reference + self._options.armijo * scale * slope:
+                return trial
+            if attempt == 0 and self._options.second_order_correction:
+                corrected = self._corrected_trial(step, trial)
+                if corrected.merit(penalty) <= reference + self._options.armijo * slope:
+                    return corrected
+            scale *= 0.5
+        return None
+
+    @staticmethod
+    def _merit_slope(model: PointModel, step: ConstrainedStep, penalty: float) -> float:
+        """Directional derivative bound ``grad f^T delta - mu (|h|_1 + |g_+|_1)``."""
+        return float(model.gradient @ step.step) - penalty * model.values.infeasibility()
+
+    def _trial(self, free: FloatArray) -> PointValues:
+        return self._evaluator.values(self._evaluator.clip_to_limits(free))
+
+    def _corrected_trial(self, step: ConstrainedStep, trial: PointValues) -> PointValues:
+        active_values = self._active_values(trial, step.system.working)
+        return self._trial(trial.free + self._correction(step, active_values))
+
+    def _correction(self, step: ConstrainedStep, active_values: FloatArray) -> FloatArray:
+        """Second-order correction ``-M^{-1} H^T S^{-1} h_w(xi + delta)`` (min ``M``-norm)."""
+        if step.schur_factor is None:
+            return np.zeros_like(step.step)
+        weights = cho_solve(step.schur_factor, active_values)
+        return -step.metric.solve(step.system.jacobian.T @ weights)
+
+
+def solve_chomp(
+    problem: TrajectoryProblem, initial_guess: FloatArray, options: ChompOptions | None = None
+) -> OptimizationResult:
+    """One-shot constrained CHOMP; build a :class:`ChompSolver` to reuse ``M``'s factor."""
+    return ChompSolver(problem, options).solve(initial_guess)

@@ -1,0 +1,89 @@
+"""Plan door motions: build the problem, optimise (SQP or constrained CHOMP), time it.
+
+Multi-start as seed 001 Sec. IV: first the IK-keyed initial guess (or the cached last
+feasible solution of the same motion when it starts where this one does), then guesses
+through a random middle state. The first feasible result wins.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from enum import Enum
+
+import numpy as np
+
+from door_contract.converters.trajectory import JointPath
+from door_trajopt.chomp import ChompSolver
+from door_trajopt.motions import Motion, MotionOptions, MotionProblem, MotionSetup, build_motion
+from door_trajopt.result import OptimizationResult, Outcome
+from door_trajopt.sqp import SqpSolver
+from door_trajopt.timing import time_parameterise
+
+
+class Backend(str, Enum):
+    SQP = "sqp"
+    CHOMP = "chomp"
+
+
+@dataclass(frozen=True)
+class MotionPlan:
+    motion: Motion
+    result: OptimizationResult
+    path: JointPath | None  # the chain's joints only, time-parameterised
+    final_door: tuple[float, float]  # θ, φ at the end (rad)
+    attempts: int
+    planning_time_s: float
+
+    @property
+    def succeeded(self) -> bool:
+        return self.result.outcome is Outcome.SUCCESS and self.path is not None
+
+
+@dataclass
+class MotionLibrary:
+    options: MotionOptions = field(default_factory=MotionOptions)
+    starts: int = 3  # initial guesses tried (seed 001 Sec. IV: multiple random guesses)
+    velocity_scale: float = 0.5
+    seed: int = 0
+    _cache: dict = field(default_factory=dict)  # motion → last feasible trajectory (n, m)
+
+    def plan(self, motion: Motion, setup: MotionSetup, start_chain: np.ndarray,
+             backend: Backend = Backend.SQP) -> MotionPlan:
+        started = time.perf_counter()
+        built = build_motion(motion, setup, start_chain, self.options)
+        rng = np.random.default_rng(self.seed)
+        result, attempts = None, 0
+        for guess in self._guesses(motion, built, rng):
+            attempts += 1
+            result = self._solve(built, guess, backend)
+            if result.outcome is Outcome.SUCCESS:
+                self._cache[motion] = result.trajectory
+                break
+        k = built.chain.size
+        path = None
+        if result.outcome is Outcome.SUCCESS:
+            path = time_parameterise(result.trajectory[:, :k], built.chain.joint_names,
+                                     built.chain.velocity_limits * self.velocity_scale)
+        final = tuple(float(v) for v in result.trajectory[-1, k:])
+        return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started)
+
+    def _guesses(self, motion: Motion, built: MotionProblem, rng: np.random.Generator):
+        cached = self._cache.get(motion)
+        if cached is not None and cached.shape == built.initial_guess.shape and \
+                np.allclose(cached[0], built.problem.start, atol=1e-3):
+            yield cached
+        yield built.initial_guess
+        lower, upper = built.problem.limits.lower, built.problem.limits.upper
+        n = built.problem.n_waypoints
+        for _ in range(self.starts - 1):  # linear interpolation through a random middle state
+            middle = np.clip(built.initial_guess[n // 2] + rng.normal(0.0, 0.2, lower.size), lower, upper)
+            ratio = np.abs(np.linspace(-1.0, 1.0, n))[:, None]
+            guess = ratio * built.initial_guess + (1.0 - ratio) * middle
+            guess[0] = built.problem.start
+            yield guess
+
+    @staticmethod
+    def _solve(built: MotionProblem, guess: np.ndarray, backend: Backend) -> OptimizationResult:
+        solver = SqpSolver(built.problem) if backend is Backend.SQP else ChompSolver(built.problem)
+        return solver.solve(guess)

@@ -1,0 +1,314 @@
+"""The door motion library as optimisation problems (seed 001 Sec. IV, seed 000 Sec. III).
+
+State of every problem: the arm chain's joints (torso + arm of one side) followed by the
+door's hinge angle θ and handle angle φ (seed 000's m = 9 = arm + hip yaw + hinge + handle;
+here the chain is the profile's). Constraints:
+
+* **closed chain** while grasping: TCP pose = :meth:`DoorModel.grasp_pose` (θ_t, φ_t) at every
+  waypoint, with a 6-vector mask (seed 001's diag(c1..c6));
+* **key poses**: pregrasp (the hand ``pregrasp_offset`` back along the normal, seed 001
+  Sec. II: "the hand needs to move forward around 4 cm") and grasp at the end of the approach;
+* **door path**: φ reaches the handle turn, θ the opening angle at the last waypoint;
+* **CoM inside the support polygon** (half-planes of the feet's rectangle, seed 001 Sec. IV);
+* **wall clearance**: a hinge loss on the elbow's signed distance to the door plane.
+
+Costs: accelerations (seed 000's A = KᵀK; seed 001's joint displacement Q1 for velocity),
+posture deviation from the nominal posture (Q2).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from enum import Enum
+
+import numpy as np
+
+from door_robot.profile import Side
+from door_trajopt.chain import ArmChain
+from door_trajopt.door_model import DoorModel, rotation_vector
+from door_trajopt.ik import IkOptions, solve_ik, solve_ik_multistart
+from door_trajopt.problem import (ConstraintKind, JointLimits, PostureCost, SmoothnessSpec,
+                                  TrajectoryProblem, TrajoptError)
+from door_trajopt.waypoint_constraints import fixed_dof, waypoint_constraint
+
+FULL_MASK = np.ones(6)
+POSITION_MASK = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
+HINGE_LIMITS = (0.0, 1.75)  # rad, door stop
+HANDLE_LIMITS = (0.0, 1.0)  # rad, handle stop
+
+
+class Motion(str, Enum):
+    APPROACH_HANDLE = "approach_handle"
+    TURN_HANDLE = "turn_handle"
+    PUSH_DOOR = "push_door"
+    PULL_DOOR = "pull_door"
+    BLOCK_DOOR = "block_door"
+    READY_TO_WALK = "ready_to_walk"
+
+    @property
+    def uses_other_arm(self) -> bool:
+        return self is Motion.BLOCK_DOOR
+
+
+@dataclass(frozen=True)
+class MotionOptions:
+    """Motion-library settings (SI units). Validated; errors name the field and range."""
+
+    waypoints: int = 16
+    handle_turn: float = 0.8  # rad; seed 001 turned ~80°, the DRC-like sim handle stops at 1.0 rad
+    push_angle: float = 0.3  # rad the arm pushes the door open (the body pushes it further)
+    pull_angle: float = 0.6  # rad (~35°; seed 001: ~40°)
+    pregrasp_offset: float = 0.04  # m, seed 001 Sec. II
+    com_margin: float = 0.02  # m inside the support polygon
+    wall_clearance: float = 0.04  # m, elbow in front of the door plane
+    lever_standoff: float = 0.06  # m, door face behind the grasp point
+    block_inset: float = 0.10  # m from the free edge where the other hand blocks the door
+    posture_weight: float = 0.05
+
+    def __post_init__(self) -> None:
+        checks = {"waypoints": (4, 200), "handle_turn": (0.1, HANDLE_LIMITS[1]),
+                  "push_angle": (0.05, HINGE_LIMITS[1]), "pull_angle": (0.05, HINGE_LIMITS[1]),
+                  "pregrasp_offset": (0.0, 0.2), "com_margin": (0.0, 0.1), "wall_clearance": (0.0, 0.3),
+                  "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "posture_weight": (0.0, 100.0)}
+        for name, (low, high) in checks.items():
+            value = getattr(self, name)
+            if not (np.isfinite(value) and low <= value <= high):
+                raise TrajoptError(f"MotionOptions.{name} = {value!r} is outside [{low:g}, {high:g}]")
+
+
+@dataclass(frozen=True)
+class MotionSetup:
+    """What a motion is planned from: the chain (at the measured posture) and the door."""
+
+    chain: ArmChain
+    door: DoorModel
+    door_width: float
+    support_polygon: np.ndarray  # (4,) x_min, x_max, y_min, y_max of the feet, base frame
+    start_door: tuple[float, float] = (0.0, 0.0)  # θ, φ
+
+
+@dataclass(frozen=True)
+class MotionProblem:
+    problem: TrajectoryProblem
+    initial_guess: np.ndarray  # (n, m)
+    chain: ArmChain
+
+
+# --------------------------------------------------------------------- waypoint functions
+def _tcp_target_error(chain: ArmChain, target_of, mask: np.ndarray):
+    """Waypoint function: masked TCP pose error to a target that may depend on (θ, φ)."""
+    rows = mask.astype(bool)
+    k = chain.size
+
+    def function(q: np.ndarray):
+        pose = chain.tcp_pose(q[:k])
+        target, door_jacobian = target_of(q[k], q[k + 1])
+        error = np.concatenate([pose[:3, 3] - target[:3, 3], rotation_vector(pose[:3, :3] @ target[:3, :3].T)])
+        jacobian = np.hstack([chain.tcp_jacobian(q[:k]), -door_jacobian])
+        return error[rows], jacobian[rows]
+    return function
+
+
+def _grasp_target(setup: MotionSetup, tcp_in_grasp: np.ndarray):
+    def target_of(theta: float, phi: float):
+        pose = setup.door.grasp_pose(theta, phi) @ tcp_in_grasp
+        return pose, setup.door.pose_derivatives(theta, phi)
+    return target_of
+
+
+def _fixed_target(pose: np.ndarray):
+    return lambda theta, phi: (pose, np.zeros((6, 2)))
+
+
+def _com_in_polygon(setup: MotionSetup, margin: float):
+    """g = [x_min − c_x, c_x − x_max, y_min − c_y, c_y − y_max] + margin ≤ 0."""
+    x_min, x_max, y_min, y_max = setup.support_polygon
+    k = setup.chain.size
+    signs = np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, -1.0], [0.0, 1.0]])
+    bounds = np.array([-x_min, x_max, -y_min, y_max])
+
+    def function(q: np.ndarray):
+        com, jacobian = setup.chain.com_and_jacobian(q[:k])
+        value = signs @ com[:2] - bounds + margin
+        return value, np.hstack([signs @ jacobian[:2], np.zeros((4, 2))])
+    return function
+
+
+def _elbow_clearance(setup: MotionSetup, options: MotionOptions):
+    """g = clearance − (p_elbow − p_door)·n ≤ 0, the door face ``lever_standoff`` behind the grasp."""
+    k, frame = setup.chain.size, setup.chain.elbow_frame
+    normal = setup.door.normal
+    face = setup.door.grasp_point - options.lever_standoff * normal
+
+    def function(q: np.ndarray):
+        point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
+        value = np.array([options.wall_clearance - (point - face) @ normal])
+        return value, np.hstack([-(normal @ jacobian)[None, :], np.zeros((1, 2))])
+    return function
+
+
+# --------------------------------------------------------------------- problem assembly
+def _limits(setup: MotionSetup, door_moves: tuple[bool, bool]) -> JointLimits:
+    chain = setup.chain
+    lower = [*chain.lower, *(HINGE_LIMITS[0], HANDLE_LIMITS[0])]
+    upper = [*chain.upper, *(HINGE_LIMITS[1], HANDLE_LIMITS[1])]
+    for dof, moves in enumerate(door_moves):
+        if not moves:  # a door DOF that does not move is pinned by its bounds
+            lower[chain.size + dof] = upper[chain.size + dof] = setup.start_door[dof]
+    return JointLimits(np.array(lower), np.array(upper))
+
+
+def _problem(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions, door_moves,
+             constraints, end: np.ndarray | None = None) -> TrajectoryProblem:
+    chain = setup.chain
+    m = chain.size + 2
+    start = np.concatenate([start_chain, setup.start_door])
+    nominal = np.concatenate([chain.chain_of(chain.kinematics.nominal_q), setup.start_door])
+    posture_weights = np.concatenate([np.full(chain.size, options.posture_weight), [0.0, 0.0]])
+    common = [waypoint_constraint("support_polygon", ConstraintKind.INEQUALITY,
+                                  _com_in_polygon(setup, options.com_margin), 4,
+                                  range(1, options.waypoints), m, options.waypoints)]
+    return TrajectoryProblem(
+        n_waypoints=options.waypoints, start=start, limits=_limits(setup, door_moves), end=end,
+        smoothness=SmoothnessSpec(), posture=PostureCost(nominal, posture_weights),
+        constraints=tuple(constraints) + tuple(common),
+        dof_names=(*chain.joint_names, "door_hinge", "door_handle"))
+
+
+def _tcp_in_grasp(setup: MotionSetup, start_chain: np.ndarray) -> np.ndarray:
+    """TCP orientation relative to the grasp frame: fingers into the door, closing vertically.
+
+    TALOS-like grippers point their fingers along −z of the TCP and close along y: so
+    z_tcp = x_grasp (the normal), y_tcp = z_grasp (up), x_tcp = y_grasp.
+    """
+    tcp = np.eye(4)
+    tcp[:3, :3] = np.column_stack([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
+    return tcp
+
+
+def build_motion(motion: Motion, setup: MotionSetup, start_chain: np.ndarray,
+                 options: MotionOptions = MotionOptions()) -> MotionProblem:
+    """The optimisation problem of ``motion`` and its initial guess (IK key poses)."""
+    builder = {Motion.APPROACH_HANDLE: _approach, Motion.TURN_HANDLE: _turn, Motion.PUSH_DOOR: _swing,
+               Motion.PULL_DOOR: _swing, Motion.BLOCK_DOOR: _block, Motion.READY_TO_WALK: _ready}[motion]
+    return builder(setup, start_chain, options)
+
+
+def _approach(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
+    n, m = options.waypoints, setup.chain.size + 2
+    offset = _tcp_in_grasp(setup, start_chain)
+    grasp = setup.door.grasp_pose(*setup.start_door) @ offset
+    pregrasp = grasp.copy()
+    pregrasp[:3, 3] += options.pregrasp_offset * setup.door.normal
+    t_pre = max(1, int(round(0.7 * (n - 1))))
+    constraints = [
+        waypoint_constraint("pregrasp_pose", ConstraintKind.EQUALITY,
+                            _tcp_target_error(setup.chain, _fixed_target(pregrasp), FULL_MASK), 6, [t_pre], m, n),
+        waypoint_constraint("grasp_pose", ConstraintKind.EQUALITY,
+                            _tcp_target_error(setup.chain, _fixed_target(grasp), FULL_MASK), 6, [n - 1], m, n),
+        waypoint_constraint("wall_clearance", ConstraintKind.INEQUALITY, _elbow_clearance(setup, options), 1,
+                            range(1, n), m, n),
+    ]
+    problem = _problem(setup, start_chain, options, (False, False), constraints)
+    q_pre = _ik(setup.chain, pregrasp, start_chain)
+    q_grasp = solve_ik(setup.chain, grasp, q_pre).chain_q
+    guess = _through_keys(problem, [(0, start_chain), (t_pre, q_pre), (n - 1, q_grasp)], setup.start_door)
+    return MotionProblem(problem, guess, setup.chain)
+
+
+def _closed_chain(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions,
+                  door_path: np.ndarray, door_moves, extra) -> MotionProblem:
+    """Every waypoint holds the handle; the door follows ``door_path`` (n, 2) in the guess."""
+    n, m = options.waypoints, setup.chain.size + 2
+    target = _grasp_target(setup, _tcp_in_grasp(setup, start_chain))
+    constraints = [waypoint_constraint("closed_chain", ConstraintKind.EQUALITY,
+                                       _tcp_target_error(setup.chain, target, FULL_MASK), 6, range(1, n), m, n),
+                   *extra(m, n)]
+    problem = _problem(setup, start_chain, options, door_moves, constraints)
+    guess = np.empty((n, m))
+    q = start_chain
+    for t in range(n):  # continuation IK along the door path
+        q = solve_ik(setup.chain, target(*door_path[t])[0], q, IkOptions(max_iterations=60)).chain_q if t else q
+        guess[t] = np.concatenate([q, door_path[t]])
+    return MotionProblem(problem, guess, setup.chain)
+
+
+def _turn(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
+    n = options.waypoints
+    theta, phi = setup.start_door
+    path = np.column_stack([np.full(n, theta), np.linspace(phi, options.handle_turn, n)])
+    extra = lambda m, n: [fixed_dof("handle_turned", setup.chain.size + 1, {n - 1: options.handle_turn}, m, n),
+                          waypoint_constraint("wall_clearance", ConstraintKind.INEQUALITY,
+                                              _elbow_clearance(setup, options), 1, range(1, n), m, n)]
+    return _closed_chain(setup, start_chain, options, path, (False, True), extra)
+
+
+def _swing(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
+    n = options.waypoints
+    theta, phi = setup.start_door
+    angle = options.push_angle if setup.door.push else options.pull_angle
+    path = np.column_stack([np.linspace(theta, angle, n), np.full(n, phi)])
+    extra = lambda m, n: [fixed_dof("door_opened", setup.chain.size, {n - 1: angle}, m, n)]
+    return _closed_chain(setup, start_chain, options, path, (True, False), extra)
+
+
+def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
+    """The other hand goes behind the opened leaf near its free edge (position only)."""
+    n, m = options.waypoints, setup.chain.size + 2
+    door = setup.door
+    theta = setup.start_door[0]
+    leaf = door.leaf_rotation(theta)
+    edge = door.hinge_point + leaf @ ((setup.door_width - options.block_inset) * door.along)
+    behind = leaf @ (-door.normal) * (options.lever_standoff + 0.05)  # the side the door closes towards
+    target = np.eye(4)
+    target[:3, 3] = edge + behind
+    constraints = [waypoint_constraint("block_position", ConstraintKind.EQUALITY,
+                                       _tcp_target_error(setup.chain, _fixed_target(target), POSITION_MASK),
+                                       3, [n - 1], m, n)]
+    problem = _problem(setup, start_chain, options, (False, False), constraints)
+    q_end = _ik(setup.chain, target, start_chain, POSITION_MASK)
+    guess = _through_keys(problem, [(0, start_chain), (n - 1, q_end)], setup.start_door)
+    return MotionProblem(problem, guess, setup.chain)
+
+
+def _ready(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
+    """Back to the nominal (walking) posture of the chain."""
+    nominal = setup.chain.chain_of(setup.chain.kinematics.nominal_q)
+    end = np.concatenate([nominal, setup.start_door])
+    problem = _problem(setup, start_chain, options, (False, False), [], end=end)
+    return MotionProblem(problem, problem.linear_interpolation(end), setup.chain)
+
+
+def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
+    rng = np.random.default_rng(0)
+    seeds = [seed, chain.chain_of(chain.kinematics.nominal_q)] + [rng.uniform(chain.lower, chain.upper)
+                                                                  for _ in range(6)]
+    return solve_ik_multistart(chain, target, seeds, mask=mask).chain_q
+
+
+def _through_keys(problem: TrajectoryProblem, keys: list[tuple[int, np.ndarray]], door: tuple) -> np.ndarray:
+    """Piecewise-linear interpolation through key waypoints (seed 000 Sec. III)."""
+    times = [t for t, _ in keys]
+    values = np.array([np.concatenate([q, door]) for _, q in keys])
+    all_t = np.arange(problem.n_waypoints)
+    return np.column_stack([np.interp(all_t, times, values[:, j]) for j in range(values.shape[1])])
+
+
+def start_door_for(motion: Motion, door_angle: float, options: MotionOptions) -> tuple[float, float]:
+    """(θ, φ) at the start of ``motion``: the handle stays turned while the door swings."""
+    turned = motion in (Motion.PUSH_DOOR, Motion.PULL_DOOR)
+    return (door_angle, options.handle_turn if turned else 0.0)
+
+
+def support_polygon(chain: ArmChain) -> np.ndarray:
+    """x/y bounds (base frame) of the rectangle covering both soles in the measured posture."""
+    kinematics = chain.kinematics
+    walking = kinematics.profile.walking
+    corners = []
+    for side in Side:
+        sole = kinematics.frame_pose(chain.body_q, kinematics.profile.feet[side])
+        for dx in (-walking.foot_length / 2, walking.foot_length / 2):
+            for dy in (-walking.foot_width / 2, walking.foot_width / 2):
+                corners.append((sole @ np.array([dx, dy, 0.0, 1.0]))[:2])
+    corners = np.array(corners)
+    return np.array([corners[:, 0].min(), corners[:, 0].max(), corners[:, 1].min(), corners[:, 1].max()])

@@ -1,0 +1,73 @@
+"""Constraint blocks built from per-waypoint functions (block-diagonal Jacobians).
+
+A waypoint function maps one waypoint q_t (m,) to (value (r,), jacobian (r, m)); applied
+at the waypoints ``at`` it becomes a :class:`~door_trajopt.problem.Constraint` with a
+fixed structural pattern (r rows per waypoint, its own m columns), which the SQP backend
+needs to set OSQP up once.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import numpy as np
+import scipy.sparse as sp
+
+from door_trajopt.problem import Constraint, ConstraintKind, ResidualCost
+
+WaypointFunction = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
+
+
+def _block_indices(at: Sequence[int], rows: int, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """Row and column index of every entry of the stacked (rows × m) blocks, block by block."""
+    block_rows = np.repeat(np.arange(rows), m)
+    block_cols = np.tile(np.arange(m), rows)
+    row_index = np.concatenate([b * rows + block_rows for b in range(len(at))])
+    col_index = np.concatenate([t * m + block_cols for t in at])
+    return row_index, col_index
+
+
+def _block_pattern(at: Sequence[int], rows: int, m: int, n: int) -> sp.csr_matrix:
+    row_index, col_index = _block_indices(at, rows, m)
+    return sp.csr_matrix((np.ones(row_index.size, dtype=bool), (row_index, col_index)),
+                         shape=(rows * len(at), n * m))
+
+
+def _callbacks(function: WaypointFunction, at: Sequence[int], rows: int, m: int, n: int):
+    at = tuple(at)
+    row_index, col_index = _block_indices(at, rows, m)
+    shape = (rows * len(at), n * m)
+
+    def value(trajectory: np.ndarray) -> np.ndarray:
+        return np.concatenate([function(trajectory[t])[0] for t in at])
+
+    def jacobian(trajectory: np.ndarray) -> sp.csr_matrix:
+        entries = np.concatenate([function(trajectory[t])[1].ravel() for t in at])
+        return sp.csr_matrix((entries, (row_index, col_index)), shape=shape)
+
+    return value, jacobian
+
+
+def waypoint_constraint(name: str, kind: ConstraintKind, function: WaypointFunction, rows: int,
+                        at: Sequence[int], m: int, n: int) -> Constraint:
+    value, jacobian = _callbacks(function, at, rows, m, n)
+    return Constraint(name, kind, rows * len(at), value, jacobian, _block_pattern(at, rows, m, n))
+
+
+def waypoint_cost(name: str, function: WaypointFunction, rows: int, at: Sequence[int], m: int, n: int,
+                  weight: float) -> ResidualCost:
+    value, jacobian = _callbacks(function, at, rows, m, n)
+    return ResidualCost(name, rows * len(at), value, jacobian, weight, _block_pattern(at, rows, m, n))
+
+
+def fixed_dof(name: str, dof: int, values: dict[int, float], m: int, n: int) -> Constraint:
+    """q_t[dof] = values[t] for each waypoint t in ``values`` (linear equality rows)."""
+    times = tuple(sorted(values))
+    targets = np.array([values[t] for t in times])
+    rows = sp.csr_matrix((np.ones(len(times)), ([*range(len(times))], [t * m + dof for t in times])),
+                         shape=(len(times), n * m))
+
+    def value(trajectory: np.ndarray) -> np.ndarray:
+        return trajectory[list(times), dof] - targets
+
+    return Constraint(name, ConstraintKind.EQUALITY, len(times), value, lambda _: rows, rows.astype(bool))
