@@ -62,10 +62,15 @@ class HingeSide(str, Enum):
     LEFT = "left"
     RIGHT = "right"
 
-    @property
-    def grasp_hand(self) -> str:
-        """The hand that opens the door: the one on the handle's side (opposite the hinge)."""
-        return "right" if self is HingeSide.LEFT else "left"
+    def grasp_hand(self, opening: str) -> str:
+        """The hand that opens the door.
+
+        Push doors: the hand on the handle's side (opposite the hinge). Pull doors: the robot
+        stands beyond the latch edge, outside the leaf's sweep, so the handle is on its
+        hinge side and that hand reaches it.
+        """
+        handle_side = "right" if self is HingeSide.LEFT else "left"
+        return handle_side if opening == "push" else self.value
 
 
 @dataclasses.dataclass(frozen=True)

@@ -208,7 +208,7 @@ class FsmSupervisorNode(Node):
         self.motion_request_pub.publish(String(data=encode(request)))
 
     def _do_CallGrasp(self, action: act.CallGrasp) -> None:
-        hand = self.door.hinge_side.grasp_hand if self.door else "right"
+        hand = self.door.hinge_side.grasp_hand(self.parameters["opening"]) if self.door else "right"
         client = self.grasp_clients[hand]
         if not client.service_is_ready():
             self._feed(ev.GraspAnswered(action.request_id, False, f"/{hand}_hand/grasp is not available"))

@@ -40,8 +40,17 @@ class ArmChain:
     @property
     def elbow_frame(self) -> str:
         """Body frame of the elbow joint: the 4th-from-last joint of a 7-DOF arm chain."""
+        return self.body_frame(self.size - 4)
+
+    @property
+    def forearm_frames(self) -> tuple[str, ...]:
+        """Body frames of the elbow and forearm joints (4th- and 3rd-from-last); the wrist
+        beyond them is placed by the hand's pose."""
+        return tuple(self.body_frame(i) for i in range(self.size - 4, self.size - 2))
+
+    def body_frame(self, chain_index: int) -> str:
         model = self.kinematics.model
-        joint_id = model.getJointId(self.joint_names[self.size - 4])
+        joint_id = model.getJointId(self.joint_names[chain_index])
         return next(f.name for f in model.frames if f.parentJoint == joint_id and f.type.name == "BODY")
 
     @property

@@ -16,7 +16,7 @@ from functools import cached_property
 
 import numpy as np
 
-from door_contract.payloads import DoorEstimate, HingeSide
+from door_contract.payloads import DoorEstimate
 
 UP = np.array([0.0, 0.0, 1.0])
 
@@ -108,8 +108,12 @@ def rotation_vector(rotation: np.ndarray) -> np.ndarray:
 
 
 def door_model_from_estimate(estimate: DoorEstimate, world_to_base: np.ndarray, push: bool,
-                             lever_radius: float = 0.066) -> DoorModel:
-    """The door model in the base frame from a detector estimate given in the world (odom)."""
+                             lever_radius: float = 0.066, leaf_thickness: float = 0.04) -> DoorModel:
+    """The door model in the base frame from a detector estimate given in the world (odom).
+
+    The detector sees the robot-side face; hinges sit on the face the door swings towards,
+    so for a push door the hinge axis is ``leaf_thickness`` behind the visible hinge edge.
+    """
     rotation, translation = world_to_base[:3, :3], world_to_base[:3, 3]
     grasp = rotation @ np.asarray(estimate.handle_position) + translation
     normal = rotation @ np.asarray(estimate.normal)
@@ -119,11 +123,9 @@ def door_model_from_estimate(estimate: DoorEstimate, world_to_base: np.ndarray, 
     hinge_bottom, hinge_top = corners[0], corners[3]
     hinge_point = hinge_bottom + (hinge_top - hinge_bottom) * (
         (grasp[2] - hinge_bottom[2]) / max(hinge_top[2] - hinge_bottom[2], 1e-6))
+    if push:
+        hinge_point = hinge_point - leaf_thickness * normal
     return DoorModel(grasp, normal, hinge_point, push, lever_radius)
 
 
-def grasp_side(estimate: DoorEstimate) -> str:
-    return estimate.hinge_side.grasp_hand
 
-
-__all__ = ["DoorModel", "HingeSide", "door_model_from_estimate", "rotation_about", "rotation_vector"]

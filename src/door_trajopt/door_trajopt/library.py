@@ -45,6 +45,7 @@ class MotionLibrary:
     options: MotionOptions = field(default_factory=MotionOptions)
     starts: int = 3  # initial guesses tried (seed 001 Sec. IV: multiple random guesses)
     velocity_scale: float = 0.5
+    door_velocity_limits: tuple[float, float] = (0.15, 0.5)  # rad/s of hinge and handle: a door is heavy
     seed: int = 0
     _cache: dict = field(default_factory=dict)  # motion → last feasible trajectory (n, m)
 
@@ -53,18 +54,21 @@ class MotionLibrary:
         started = time.perf_counter()
         built = build_motion(motion, setup, start_chain, self.options)
         rng = np.random.default_rng(self.seed)
+        solver = SqpSolver(built.problem) if backend is Backend.SQP else ChompSolver(built.problem)
         result, attempts = None, 0
-        for guess in self._guesses(motion, built, rng):
+        for guess in self._guesses(motion, built, rng):  # one solver: its factorisation is reused
             attempts += 1
-            result = self._solve(built, guess, backend)
+            result = solver.solve(guess)
             if result.outcome is Outcome.SUCCESS:
                 self._cache[motion] = result.trajectory
                 break
         k = built.chain.size
         path = None
         if result.outcome is Outcome.SUCCESS:
-            path = time_parameterise(result.trajectory[:, :k], built.chain.joint_names,
-                                     built.chain.velocity_limits * self.velocity_scale)
+            # timed over robot and door DOFs, so the door is never swung faster than it can follow
+            limits = np.concatenate([built.chain.velocity_limits * self.velocity_scale, self.door_velocity_limits])
+            timed = time_parameterise(result.trajectory, built.problem.dof_names, limits)
+            path = JointPath(timed.times, built.chain.joint_names, timed.positions[:, :k], timed.velocities[:, :k])
         final = tuple(float(v) for v in result.trajectory[-1, k:])
         return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started)
 
@@ -82,8 +86,3 @@ class MotionLibrary:
             guess = ratio * built.initial_guess + (1.0 - ratio) * middle
             guess[0] = built.problem.start
             yield guess
-
-    @staticmethod
-    def _solve(built: MotionProblem, guess: np.ndarray, backend: Backend) -> OptimizationResult:
-        solver = SqpSolver(built.problem) if backend is Backend.SQP else ChompSolver(built.problem)
-        return solver.solve(guess)

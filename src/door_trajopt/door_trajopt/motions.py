@@ -56,20 +56,23 @@ class MotionOptions:
 
     waypoints: int = 16
     handle_turn: float = 0.8  # rad; seed 001 turned ~80°, the DRC-like sim handle stops at 1.0 rad
-    push_angle: float = 0.3  # rad the arm pushes the door open (the body pushes it further)
+    push_angle: float = 0.2  # rad the arm pushes the door open (the body pushes it further)
     pull_angle: float = 0.6  # rad (~35°; seed 001: ~40°)
     pregrasp_offset: float = 0.04  # m, seed 001 Sec. II
     com_margin: float = 0.02  # m inside the support polygon
     wall_clearance: float = 0.04  # m, elbow in front of the door plane
     lever_standoff: float = 0.06  # m, door face behind the grasp point
     block_inset: float = 0.10  # m from the free edge where the other hand blocks the door
+    post_inset: float = 0.022  # m, the latch-side post's face inside the leaf's free edge (0.87 m clear)
+    forearm_clearance: float = 0.06  # m, forearm radius + margin to the post
     posture_weight: float = 0.05
 
     def __post_init__(self) -> None:
         checks = {"waypoints": (4, 200), "handle_turn": (0.1, HANDLE_LIMITS[1]),
                   "push_angle": (0.05, HINGE_LIMITS[1]), "pull_angle": (0.05, HINGE_LIMITS[1]),
                   "pregrasp_offset": (0.0, 0.2), "com_margin": (0.0, 0.1), "wall_clearance": (0.0, 0.3),
-                  "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "posture_weight": (0.0, 100.0)}
+                  "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "posture_weight": (0.0, 100.0),
+                  "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3)}
         for name, (low, high) in checks.items():
             value = getattr(self, name)
             if not (np.isfinite(value) and low <= value <= high):
@@ -147,6 +150,33 @@ def _elbow_clearance(setup: MotionSetup, options: MotionOptions):
     return function
 
 
+def _doorway_clearance(setup: MotionSetup, options: MotionOptions):
+    """The forearm passes the doorway clear of the latch-side post (collision hinge loss).
+
+    For each forearm point p, with s = (p − p_hinge)·u its distance along the closed door
+    from the hinge and d = (p − p_face)·n its distance in front of the wall:
+    g = s − (s_post − margin) − slope·max(0, d − d₀) ≤ 0 — the post only constrains points
+    that are at (or past) the wall plane; in front of it the bound relaxes linearly.
+    """
+    k, frames = setup.chain.size, setup.chain.forearm_frames
+    along, hinge, normal = setup.door.along, setup.door.hinge_point, setup.door.normal
+    face = setup.door.grasp_point - options.lever_standoff * normal
+    limit = setup.door_width - options.post_inset - options.forearm_clearance
+    slope, free_distance = 3.0, 0.03
+
+    def function(q: np.ndarray):
+        values, rows = [], []
+        for frame in frames:
+            point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
+            ahead = (point - face) @ normal - free_distance
+            relax = slope * max(0.0, ahead)
+            values.append((point - hinge) @ along - limit - relax)
+            gradient = along - (slope * normal if ahead > 0 else 0.0)
+            rows.append(np.concatenate([gradient @ jacobian, np.zeros(2)]))
+        return np.array(values), np.array(rows)
+    return function
+
+
 # --------------------------------------------------------------------- problem assembly
 def _limits(setup: MotionSetup, door_moves: tuple[bool, bool]) -> JointLimits:
     chain = setup.chain
@@ -189,6 +219,8 @@ def _tcp_in_grasp(setup: MotionSetup, start_chain: np.ndarray) -> np.ndarray:
 def build_motion(motion: Motion, setup: MotionSetup, start_chain: np.ndarray,
                  options: MotionOptions = MotionOptions()) -> MotionProblem:
     """The optimisation problem of ``motion`` and its initial guess (IK key poses)."""
+    # measured joints can sit a hair outside their limits (position control overshoot)
+    start_chain = np.clip(start_chain, setup.chain.lower, setup.chain.upper)
     builder = {Motion.APPROACH_HANDLE: _approach, Motion.TURN_HANDLE: _turn, Motion.PUSH_DOOR: _swing,
                Motion.PULL_DOOR: _swing, Motion.BLOCK_DOOR: _block, Motion.READY_TO_WALK: _ready}[motion]
     return builder(setup, start_chain, options)
@@ -248,7 +280,12 @@ def _swing(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
     theta, phi = setup.start_door
     angle = options.push_angle if setup.door.push else options.pull_angle
     path = np.column_stack([np.linspace(theta, angle, n), np.full(n, phi)])
-    extra = lambda m, n: [fixed_dof("door_opened", setup.chain.size, {n - 1: angle}, m, n)]
+    def extra(m: int, n: int) -> list:
+        constraints = [fixed_dof("door_opened", setup.chain.size, {n - 1: angle}, m, n)]
+        if setup.door.push:  # the forearm goes through the doorway with the door
+            constraints.append(waypoint_constraint("doorway_clearance", ConstraintKind.INEQUALITY,
+                                                   _doorway_clearance(setup, options), 2, range(1, n), m, n))
+        return constraints
     return _closed_chain(setup, start_chain, options, path, (True, False), extra)
 
 

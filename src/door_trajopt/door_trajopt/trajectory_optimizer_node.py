@@ -117,7 +117,7 @@ class TrajectoryOptimizerNode(Node):
         backend = Backend(request.backend or self.parameters["backend"])
         body_q = self.kinematics.configuration(
             {k: v for k, v in self.joint_positions.items() if k in self.kinematics.joint_names})
-        hand = Side(self.door.hinge_side.grasp_hand)
+        hand = Side(self.door.hinge_side.grasp_hand(request.opening))
         side = hand.other if motion.uses_other_arm else hand
         chain = ArmChain(self.kinematics, side, body_q)
         door = door_model_from_estimate(self.door, np.linalg.inv(self.base_pose),

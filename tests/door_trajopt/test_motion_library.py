@@ -1,0 +1,140 @@
+"""The door motion library on TALOS: constraints hold at the solution, both backends plan
+the closed chain, and a planned approach → grasp → turn → push opens the simulated door."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from door_sim_bridge.execution import TrajectoryExecution
+from door_sim_bridge.world import DoorOpening
+from door_trajopt.door_model import rotation_vector
+from door_trajopt.library import Backend, MotionLibrary
+from door_trajopt.chomp import ChompSolver
+from door_trajopt.evaluation import ProblemEvaluator
+from door_trajopt.motions import Motion, _tcp_in_grasp, build_motion, start_door_for
+from door_trajopt.sqp import SqpSolver
+from door_trajopt.result import Outcome
+from door_scenes import estimate_from_world, motion_setup, stand_world, talos_kinematics
+
+
+@pytest.fixture(scope="module")
+def scene():
+    world = stand_world(DoorOpening.PUSH)
+    kinematics = talos_kinematics()
+    estimate = estimate_from_world(world)
+    yield world, kinematics, estimate
+    world.close()
+
+
+@pytest.fixture(scope="module")
+def approach(scene):
+    world, kinematics, estimate = scene
+    setup = motion_setup(world, kinematics, estimate)
+    plan = MotionLibrary().plan(Motion.APPROACH_HANDLE, setup, setup.chain.chain_of(setup.chain.body_q))
+    assert plan.succeeded, plan.result.message
+    return setup, plan
+
+
+def _tcp_errors(setup, trajectory):
+    """(position m, rotation rad) of the TCP against the door's grasp pose at each waypoint."""
+    k, offset = setup.chain.size, _tcp_in_grasp(setup, None)
+    errors = []
+    for q in trajectory:
+        pose, target = setup.chain.tcp_pose(q[:k]), setup.door.grasp_pose(q[k], q[k + 1]) @ offset
+        errors.append((np.linalg.norm(pose[:3, 3] - target[:3, 3]),
+                       np.linalg.norm(rotation_vector(pose[:3, :3] @ target[:3, :3].T))))
+    return np.array(errors)
+
+
+def _acceleration_cost(trajectory):
+    return float(np.sum(np.diff(trajectory, n=2, axis=0) ** 2))
+
+
+def test_approach_ends_on_the_handle_within_limits_and_balance(approach):
+    setup, plan = approach
+    trajectory = plan.result.trajectory
+    position, rotation = _tcp_errors(setup, trajectory[-1:])[0]
+    assert position < 0.005 and rotation < 0.01
+    chain = setup.chain
+    assert np.all(trajectory[:, :chain.size] >= chain.lower - 1e-6)
+    assert np.all(trajectory[:, :chain.size] <= chain.upper + 1e-6)
+    x_min, x_max, y_min, y_max = setup.support_polygon
+    for q in trajectory:
+        com = chain.com_and_jacobian(q[:chain.size])[0]
+        assert x_min <= com[0] <= x_max and y_min <= com[1] <= y_max
+        elbow = chain.point_and_jacobian(q[:chain.size], chain.elbow_frame)[0]
+        assert (elbow - setup.door.grasp_point) @ setup.door.normal > 0.0  # in front of the door
+    assert plan.path.times[-1] > 0 and np.all(np.diff(plan.path.times) > 0)
+
+
+@pytest.mark.parametrize("backend", list(Backend))
+def test_optimum_beats_the_initial_guess(scene, backend):
+    """From the IK-keyed guess (a few cm off its key poses, CoM and clearance not enforced),
+    both backends reach a feasible trajectory that also costs less (smoothness Q1 + posture Q2)."""
+    world, kinematics, estimate = scene
+    setup = motion_setup(world, kinematics, estimate)
+    built = build_motion(Motion.APPROACH_HANDLE, setup, setup.chain.chain_of(setup.chain.body_q))
+    evaluator = ProblemEvaluator.for_problem(built.problem)
+    guess = evaluator.values(built.problem.free_vector(built.initial_guess))
+    solver = SqpSolver(built.problem) if backend is Backend.SQP else ChompSolver(built.problem)
+    result = solver.solve(built.initial_guess)
+    assert result.outcome is Outcome.SUCCESS, result.message
+    assert result.max_violation < 1e-6 < guess.infeasibility()
+    assert result.cost < guess.cost
+
+
+@pytest.mark.parametrize("backend", list(Backend))
+def test_turn_keeps_the_hand_on_the_handle_along_the_closed_chain(approach, backend):
+    setup, plan = approach
+    start = plan.result.trajectory[-1, :setup.chain.size]
+    turn = MotionLibrary().plan(Motion.TURN_HANDLE, setup, start, backend)
+    assert turn.succeeded, turn.result.message
+    errors = _tcp_errors(setup, turn.result.trajectory)
+    assert errors[:, 0].max() < 0.005 and errors[:, 1].max() < 0.01
+    assert turn.final_door[1] == pytest.approx(MotionLibrary().options.handle_turn, abs=1e-4)
+    assert turn.final_door[0] == pytest.approx(0.0, abs=1e-9)  # the door stays shut while turning
+
+
+def test_both_backends_agree_on_the_turn(approach):
+    setup, plan = approach
+    start = plan.result.trajectory[-1, :setup.chain.size]
+    costs = [MotionLibrary().plan(Motion.TURN_HANDLE, setup, start, backend).result.cost for backend in Backend]
+    assert costs[0] == pytest.approx(costs[1], rel=0.25)
+
+
+def test_unreachable_handle_is_infeasible_and_names_the_constraint(scene):
+    world, kinematics, estimate = scene
+    far = replace(estimate, handle_position=(estimate.handle_position[0] + 1.5, *estimate.handle_position[1:]))
+    setup = motion_setup(world, kinematics, far)
+    library = MotionLibrary(starts=1)
+    plan = library.plan(Motion.APPROACH_HANDLE, setup, setup.chain.chain_of(setup.chain.body_q))
+    assert not plan.succeeded and plan.path is None
+    assert plan.result.outcome is not Outcome.SUCCESS
+    assert plan.result.violated_constraint in ("pregrasp_pose", "grasp_pose")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("backend", list(Backend))
+def test_planned_turn_and_push_open_the_simulated_door(backend):
+    world = stand_world(DoorOpening.PUSH)
+    kinematics, library = talos_kinematics(), MotionLibrary()
+    estimate = estimate_from_world(world)
+    door_angle = 0.0
+    try:
+        for motion in (Motion.APPROACH_HANDLE, "grasp", Motion.TURN_HANDLE, Motion.PUSH_DOOR):
+            if motion == "grasp":
+                assert world.grasp(setup.chain.side, True).success
+                continue
+            setup = motion_setup(world, kinematics, estimate,
+                                 door_angles=start_door_for(motion, door_angle, library.options))
+            plan = library.plan(motion, setup, setup.chain.chain_of(setup.chain.body_q), backend)
+            assert plan.succeeded, f"{motion.value}: {plan.result.message}"
+            result = TrajectoryExecution.from_joint_path(world, plan.path).run()
+            assert result.status.value == "success", f"{motion.value}: {result.reason}"
+            door_angle = plan.final_door[0]
+        state = world.door_state()
+        assert not state.latched
+        assert state.hinge_angle > 0.15  # planned 0.2 rad
+    finally:
+        world.close()
