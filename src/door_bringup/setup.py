@@ -28,6 +28,7 @@ setup(
             "door_graph = door_bringup.graph:main",
             "bag_play = door_bringup.bags.player:main",
             "bag_record = door_bringup.bags.recorder:main",
+            "door_task = door_bringup.door_task:main",
         ],
     },
 )

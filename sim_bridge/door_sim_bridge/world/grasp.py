@@ -99,7 +99,14 @@ class GraspController:
         return GraspResult(True, distance, f"{side.value} hand opened")
 
     def _attach(self, side: Side) -> int:
-        """Fixed constraint at the TCP, expressed in both links' centre-of-mass frames."""
+        """Constraint at the TCP, expressed in both links' centre-of-mass frames.
+
+        Closed fingers hold a lever bar in every direction but one: the bar can slide
+        along its length inside the hand (the TCP's x axis, along the lever when the hand
+        grasps as the motion library places it). A prismatic constraint along that axis
+        models it; a hand a few millimetres off the estimated grasp point then does not
+        fight the handle's true axis while turning it.
+        """
         hand_link = self._robot.link_index(self._robot.profile.arm(side).tcp_parent_frame)
         handle_link = self._door.link_index(DoorPart.HANDLE)
         joint_frame = self._robot.tcp_pose(side)
@@ -108,8 +115,8 @@ class GraspController:
         parent_position, parent_orientation = position_quaternion(invert(hand_com) @ joint_frame)
         child_position, child_orientation = position_quaternion(invert(handle_com) @ joint_frame)
         constraint = self._client.createConstraint(
-            self._robot.body, hand_link, self._door.body, handle_link, pybullet.JOINT_FIXED,
-            [0.0, 0.0, 0.0], parent_position, child_position, parent_orientation, child_orientation)
+            self._robot.body, hand_link, self._door.body, handle_link, pybullet.JOINT_PRISMATIC,
+            [1.0, 0.0, 0.0], parent_position, child_position, parent_orientation, child_orientation)
         self._client.changeConstraint(constraint, maxForce=SOLVER_FORCE_MARGIN * self._break_force)
         return constraint
 

@@ -36,9 +36,9 @@ class ProcessSupervisor:
     children: list[NodeProcess] = field(default_factory=list)
 
     def start(self, launch: NodeLaunch, ros_args: Sequence[str] = (),
-              env: dict[str, str] | None = None) -> NodeProcess:
-        """Start ``launch`` as ``<exe> --ros-args --params-file params/<node>.yaml <ros_args>``."""
-        command = [str(self.workspace.executable(launch.package, launch.executable)), "--ros-args"]
+              env: dict[str, str] | None = None, args: Sequence[str] = ()) -> NodeProcess:
+        """Start ``launch`` as ``<exe> <args> --ros-args --params-file params/<node>.yaml <ros_args>``."""
+        command = [str(self.workspace.executable(launch.package, launch.executable)), *args, "--ros-args"]
         params_file = self.workspace.params_file(launch.node_name)
         if params_file.is_file():
             command += ["--params-file", str(params_file)]

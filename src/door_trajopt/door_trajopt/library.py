@@ -15,7 +15,7 @@ import numpy as np
 
 from door_contract.converters.trajectory import JointPath
 from door_trajopt.chomp import ChompSolver
-from door_trajopt.motions import Motion, MotionOptions, MotionProblem, MotionSetup, build_motion
+from door_trajopt.motions import Motion, MotionOptions, MotionProblem, MotionSetup, anchored_to_hand, build_motion
 from door_trajopt.result import OptimizationResult, Outcome
 from door_trajopt.sqp import SqpSolver
 from door_trajopt.timing import time_parameterise
@@ -34,6 +34,7 @@ class MotionPlan:
     final_door: tuple[float, float]  # θ, φ at the end (rad)
     attempts: int
     planning_time_s: float
+    initial_guess: np.ndarray | None = None  # (n, m) the guess the result was optimised from
 
     @property
     def succeeded(self) -> bool:
@@ -52,13 +53,15 @@ class MotionLibrary:
     def plan(self, motion: Motion, setup: MotionSetup, start_chain: np.ndarray,
              backend: Backend = Backend.SQP) -> MotionPlan:
         started = time.perf_counter()
+        if motion.holds_handle:
+            setup = anchored_to_hand(setup, start_chain)
         built = build_motion(motion, setup, start_chain, self.options)
         rng = np.random.default_rng(self.seed)
         solver = SqpSolver(built.problem) if backend is Backend.SQP else ChompSolver(built.problem)
-        result, attempts = None, 0
+        result, attempts, used_guess = None, 0, None
         for guess in self._guesses(motion, built, rng):  # one solver: its factorisation is reused
             attempts += 1
-            result = solver.solve(guess)
+            result, used_guess = solver.solve(guess), guess
             if result.outcome is Outcome.SUCCESS:
                 self._cache[motion] = result.trajectory
                 break
@@ -70,7 +73,7 @@ class MotionLibrary:
             timed = time_parameterise(result.trajectory, built.problem.dof_names, limits)
             path = JointPath(timed.times, built.chain.joint_names, timed.positions[:, :k], timed.velocities[:, :k])
         final = tuple(float(v) for v in result.trajectory[-1, k:])
-        return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started)
+        return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started, used_guess)
 
     def _guesses(self, motion: Motion, built: MotionProblem, rng: np.random.Generator):
         cached = self._cache.get(motion)

@@ -18,7 +18,7 @@ posture deviation from the nominal posture (Q2).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from enum import Enum
 
 import numpy as np
@@ -48,6 +48,11 @@ class Motion(str, Enum):
     @property
     def uses_other_arm(self) -> bool:
         return self is Motion.BLOCK_DOOR
+
+    @property
+    def holds_handle(self) -> bool:
+        """The hand is locked on the handle throughout (closed kinematic chain)."""
+        return self in (Motion.TURN_HANDLE, Motion.PUSH_DOOR, Motion.PULL_DOOR)
 
 
 @dataclass(frozen=True)
@@ -88,6 +93,7 @@ class MotionSetup:
     door_width: float
     support_polygon: np.ndarray  # (4,) x_min, x_max, y_min, y_max of the feet, base frame
     start_door: tuple[float, float] = (0.0, 0.0)  # θ, φ
+    hand_in_grasp: np.ndarray | None = None  # measured TCP in the door's grasp frame while holding
 
 
 @dataclass(frozen=True)
@@ -206,11 +212,16 @@ def _problem(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions
 
 
 def _tcp_in_grasp(setup: MotionSetup, start_chain: np.ndarray) -> np.ndarray:
-    """TCP orientation relative to the grasp frame: fingers into the door, closing vertically.
+    """TCP relative to the grasp frame: fingers into the door, closing vertically.
 
     TALOS-like grippers point their fingers along −z of the TCP and close along y: so
-    z_tcp = x_grasp (the normal), y_tcp = z_grasp (up), x_tcp = y_grasp.
+    z_tcp = x_grasp (the normal), y_tcp = z_grasp (up), x_tcp = y_grasp. While the hand holds
+    the handle, the transform measured at the start (:func:`anchored_to_hand`) replaces
+    this nominal one: the grasp locked the hand wherever it closed (a few mm off, a degree
+    turned), and the closed chain must keep exactly that.
     """
+    if setup.hand_in_grasp is not None:
+        return setup.hand_in_grasp
     tcp = np.eye(4)
     tcp[:3, :3] = np.column_stack([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
     return tcp
@@ -329,6 +340,18 @@ def _through_keys(problem: TrajectoryProblem, keys: list[tuple[int, np.ndarray]]
     values = np.array([np.concatenate([q, door]) for _, q in keys])
     all_t = np.arange(problem.n_waypoints)
     return np.column_stack([np.interp(all_t, times, values[:, j]) for j in range(values.shape[1])])
+
+
+def anchored_to_hand(setup: MotionSetup, start_chain: np.ndarray) -> MotionSetup:
+    """The set-up with the hand-in-grasp transform measured from the arm's posture.
+
+    At the start of a handle-holding motion the hand is locked to the handle, so the
+    door's grasp frame at (θ₀, φ₀) and the TCP (forward kinematics of the measured joints)
+    fix the transform between them: T = G(θ₀, φ₀)⁻¹ · T_tcp(q₀).
+    """
+    grasp = setup.door.grasp_pose(*setup.start_door)
+    tcp = setup.chain.tcp_pose(np.clip(start_chain, setup.chain.lower, setup.chain.upper))
+    return replace(setup, hand_in_grasp=np.linalg.inv(grasp) @ tcp)
 
 
 def start_door_for(motion: Motion, door_angle: float, options: MotionOptions) -> tuple[float, float]:

@@ -135,7 +135,13 @@ class TrajectoryOptimizerNode(Node):
             details.update(cost=round(result.cost, 6), max_violation=float(f"{result.max_violation:.3g}"),
                            iterations=result.iterations, attempts=plan.attempts,
                            door_angle=round(plan.final_door[0], 5),
-                           duration_s=round(float(plan.path.times[-1]), 3) if plan.path else 0.0)
+                           duration_s=round(float(plan.path.times[-1]), 3) if plan.path else 0.0,
+                           backend=request.backend or self.parameters["backend"])
+            if plan.path is not None:  # for the report's before/after plot (seed 000 Fig. 4)
+                k = len(plan.path.joint_names)
+                details.update(joint_names=list(plan.path.joint_names),
+                               initial_guess=np.round(plan.initial_guess[:, :k], 4).tolist(),
+                               optimised=np.round(plan.result.trajectory[:, :k], 4).tolist())
         outcome = PlanningOutcome(request.request_id, status, reason,
                                   plan.planning_time_s if plan else 0.0, details)
         self.outcome_pub.publish(String(data=encode(outcome)))

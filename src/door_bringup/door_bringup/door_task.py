@@ -1,0 +1,195 @@
+"""``door_task``: the main job — the whole graph runs the door task in simulation.
+
+    door_task [--opening push|pull] [--hinge left|right] [--autonomy supervised]
+              [--operator auto|console] [--seed 0] [--backend sqp|chomp] [--run-dir DIR]
+
+Starts the sim bridge and the four nodes as separate processes (what ``ros2 launch
+door_bringup door_task.launch.py`` does on a real install), records every topic into a
+rosbag2 bag, plays the operator (``auto`` approves every request on
+/door_task/approval_request; ``console`` leaves it to you: ``./ros2 run door_fsm
+operator_console`` in another terminal), waits for the FSM's TaskReport, prints a table in
+the form of seed 001's Table I, stops the graph with SIGINT, and writes the run folder:
+``bag/``, ``logs/``, ``report.md``, ``report.json`` and plots.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from dataclasses import dataclass
+from datetime import datetime, timezone
+from pathlib import Path
+
+import rclpy
+from rclpy.node import Node
+from std_msgs.msg import String
+
+from door_bringup.graph_spec import GRAPH, NodeLaunch
+from door_bringup.processes import ProcessSupervisor
+from door_bringup.table_one import format_table, phase_rows
+from door_bringup.workspace import Workspace, repository_root
+from door_contract.node_support import create_contract_publisher, create_contract_subscription
+from door_contract.payloads import TaskReport, decode
+from door_contract.topics import Topics
+
+RECORDER = NodeLaunch("door_bringup", "bag_record", "bag_recorder")
+
+
+@dataclass(frozen=True)
+class TaskOptions:
+    opening: str = "push"
+    hinge: str = "left"
+    autonomy: str = "supervised"
+    operator: str = "auto"
+    seed: int = 0
+    backend: str = "sqp"
+    distance: float = 3.0
+    lateral: float = 0.0
+    yaw: float = 0.0
+    depth_noise: float = 0.0
+    wind: float = 0.0
+    timeout_s: float = 900.0
+    record: bool = True
+    storage: str = "sqlite3"
+
+    def node_overrides(self) -> dict[str, list[str]]:
+        """``-p name:=value`` arguments per node."""
+        sim = {"door_opening": self.opening, "hinge_side": self.hinge, "seed": self.seed,
+               "stance_distance": self.distance, "stance_lateral": self.lateral, "stance_yaw": self.yaw,
+               "depth_noise": self.depth_noise, "wind_amplitude": self.wind}
+        fsm = {"opening": self.opening, "autonomy": self.autonomy, "backend": self.backend}
+        sim_time = {"use_sim_time": "true"}
+        return {"sim_bridge": _ros_args(sim), "fsm_supervisor": _ros_args(fsm),
+                "door_detector": _ros_args(sim_time), "footstep_planner": _ros_args(sim_time),
+                "trajectory_optimizer": _ros_args(sim_time)}
+
+
+def _ros_args(values: dict) -> list[str]:
+    args = []
+    for name, value in values.items():
+        text = str(value).lower() if isinstance(value, bool) else str(value)
+        args += ["-p", f"{name}:={text}"]
+    return args
+
+
+class ScriptedOperator(Node):
+    """The operator of the main job: approves every request and collects the TaskReport."""
+
+    def __init__(self, approve: bool) -> None:
+        super().__init__("door_task_operator")
+        self.approve, self.report, self.states = approve, None, []
+        self.command_pub = create_contract_publisher(self, Topics.OPERATOR)
+        create_contract_subscription(self, Topics.APPROVAL_REQUEST, self._on_request)
+        create_contract_subscription(self, Topics.TASK_STATE, self._on_state)
+        create_contract_subscription(self, Topics.TASK_REPORT, self._on_report)
+
+    def _on_request(self, msg: String) -> None:
+        if msg.data:
+            print(f"  [approval request] {msg.data}", flush=True)
+            if self.approve:
+                self.command_pub.publish(String(data="approve"))
+                print("  [operator] approve", flush=True)
+
+    def _on_state(self, msg: String) -> None:
+        if not self.states or self.states[-1] != msg.data:
+            self.states.append(msg.data)
+            print(f"  [state] {msg.data}", flush=True)
+
+    def _on_report(self, msg: String) -> None:
+        self.report = decode(TaskReport, msg.data)
+
+
+def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
+    """Run the task once; returns the report as a dict (final_state FAILED when it never ended)."""
+    supervisor = ProcessSupervisor(workspace, run_dir / "logs")
+    overrides = options.node_overrides()
+    rclpy.init()
+    operator = ScriptedOperator(options.operator == "auto")
+    started = time.monotonic()
+    try:
+        if options.record:
+            supervisor.start(RECORDER, args=(str(run_dir / "bag"), "--storage", options.storage))
+        for launch in GRAPH:
+            supervisor.start(launch, overrides[launch.node_name])
+        print(f"graph started ({len(GRAPH)} nodes); logs in {run_dir / 'logs'}", flush=True)
+        report = _wait_for_report(operator, supervisor, options.timeout_s)
+    finally:
+        codes = supervisor.stop()
+        operator.destroy_node()
+        rclpy.try_shutdown()
+    report["wall_time_s"] = round(time.monotonic() - started, 2)
+    report["exit_codes"] = codes
+    return report
+
+
+def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, timeout_s: float) -> dict:
+    deadline = time.monotonic() + timeout_s
+    while operator.report is None and time.monotonic() < deadline:
+        rclpy.spin_once(operator, timeout_sec=0.1)
+        dead = [c.launch.node_name for c in supervisor.exited()]
+        if dead:
+            return {"final_state": "FAILED", "failure_reason": f"process(es) exited: {', '.join(dead)}",
+                    "attempts": []}
+    if operator.report is None:
+        return {"final_state": "FAILED", "failure_reason": f"no TaskReport within {timeout_s:g} s", "attempts": []}
+    report = operator.report
+    return {"final_state": report.final_state, "failure_reason": report.failure_reason,
+            "opening": report.opening, "autonomy": report.autonomy, "attempts": list(report.attempts)}
+
+
+def write_report(run_dir: Path, options: TaskOptions, report: dict) -> str:
+    ok = report["final_state"] == "DONE"
+    table = format_table(phase_rows([report]), 1, int(ok),
+                         f"Door task: {options.opening} door, hinge {options.hinge}, seed {options.seed}")
+    lines = [f"# Door task run {run_dir.name}", "", f"Final state: **{report['final_state']}**"
+             + (f" — {report['failure_reason']}" if report.get("failure_reason") else ""), "",
+             f"Wall time: {report.get('wall_time_s', 0):.1f} s; autonomy {options.autonomy}; backend {options.backend}",
+             "", table, "", "## State attempts", "", "| state | attempt | outcome | planning | moving | reason |",
+             "|---|---|---|---|---|---|"]
+    for a in report["attempts"]:
+        lines.append(f"| {a['state']} | {a['attempt']} | {a['outcome']} | {a['planning_s']:.3f} s | "
+                     f"{a['moving_s']:.1f} s | {a['reason']} |")
+    text = "\n".join(lines) + "\n"
+    (run_dir / "report.md").write_text(text)
+    (run_dir / "report.json").write_text(json.dumps({"options": options.__dict__, **report}, indent=2, default=str))
+    return table
+
+
+def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--opening", choices=("push", "pull"), default="push")
+    parser.add_argument("--hinge", choices=("left", "right"), default="left")
+    parser.add_argument("--autonomy", choices=("full", "supervised", "step"), default="supervised")
+    parser.add_argument("--operator", choices=("auto", "console"), default="auto")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--backend", choices=("sqp", "chomp"), default="sqp")
+    parser.add_argument("--distance", type=float, default=3.0, help="start distance to the door (m)")
+    parser.add_argument("--timeout", type=float, default=900.0, help="give up after this many seconds")
+    parser.add_argument("--storage", choices=("sqlite3", "mcap"), default="sqlite3")
+    parser.add_argument("--no-bag", action="store_true")
+    parser.add_argument("--run-dir", type=Path, default=None)
+    args, _ = parser.parse_known_args(argv)
+    options = TaskOptions(args.opening, args.hinge, args.autonomy, args.operator, args.seed, args.backend,
+                          args.distance, timeout_s=args.timeout, record=not args.no_bag, storage=args.storage)
+    return options, args.run_dir
+
+
+def main(argv: list[str] | None = None) -> int:
+    options, run_dir = parse_options(argv)
+    workspace = Workspace(repository_root())
+    stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    run_dir = run_dir or workspace.root / "runs" / f"{stamp}_{options.opening}_{options.hinge}"
+    run_dir.mkdir(parents=True, exist_ok=True)
+    print(f"door task: {options.opening} door hinged {options.hinge}, autonomy {options.autonomy}, "
+          f"operator {options.operator}; run folder {run_dir}", flush=True)
+    report = run_task(options, run_dir, workspace)
+    table = write_report(run_dir, options, report)
+    print(table, flush=True)
+    print(f"\nreport: {run_dir / 'report.md'}", flush=True)
+    return 0 if report["final_state"] == "DONE" else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
