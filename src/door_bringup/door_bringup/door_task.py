@@ -28,6 +28,7 @@ from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH, NodeLaunch
 from door_bringup.processes import ProcessSupervisor
+from door_bringup.run_plots import plot_run
 from door_bringup.table_one import format_table, phase_rows
 from door_bringup.workspace import Workspace, repository_root
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
@@ -50,6 +51,8 @@ class TaskOptions:
     yaw: float = 0.0
     depth_noise: float = 0.0
     wind: float = 0.0
+    door_width: float = 0.914
+    handle_height: float = 0.91
     timeout_s: float = 900.0
     record: bool = True
     storage: str = "sqlite3"
@@ -58,7 +61,8 @@ class TaskOptions:
         """``-p name:=value`` arguments per node."""
         sim = {"door_opening": self.opening, "hinge_side": self.hinge, "seed": self.seed,
                "stance_distance": self.distance, "stance_lateral": self.lateral, "stance_yaw": self.yaw,
-               "depth_noise": self.depth_noise, "wind_amplitude": self.wind}
+               "depth_noise": self.depth_noise, "wind_amplitude": self.wind, "door_width": self.door_width,
+               "handle_height": self.handle_height}
         fsm = {"opening": self.opening, "autonomy": self.autonomy, "backend": self.backend}
         sim_time = {"use_sim_time": "true"}
         return {"sim_bridge": _ros_args(sim), "fsm_supervisor": _ros_args(fsm),
@@ -187,6 +191,8 @@ def main(argv: list[str] | None = None) -> int:
     report = run_task(options, run_dir, workspace)
     table = write_report(run_dir, options, report)
     print(table, flush=True)
+    for plot in plot_run(run_dir):
+        print(f"plot: {plot}", flush=True)
     print(f"\nreport: {run_dir / 'report.md'}", flush=True)
     return 0 if report["final_state"] == "DONE" else 1
 

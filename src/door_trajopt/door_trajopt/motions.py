@@ -109,24 +109,48 @@ def _tcp_target_error(chain: ArmChain, target_of, mask: np.ndarray):
     rows = mask.astype(bool)
     k = chain.size
 
-    def function(q: np.ndarray):
+    def function(q: np.ndarray, need_jacobian: bool):
         pose = chain.tcp_pose(q[:k])
-        target, door_jacobian = target_of(q[k], q[k + 1])
+        target = target_of.pose(q[k], q[k + 1])
         error = np.concatenate([pose[:3, 3] - target[:3, 3], rotation_vector(pose[:3, :3] @ target[:3, :3].T)])
-        jacobian = np.hstack([chain.tcp_jacobian(q[:k]), -door_jacobian])
+        if not need_jacobian:
+            return error[rows], None
+        jacobian = np.hstack([chain.tcp_jacobian(q[:k]), -target_of.derivatives(q[k], q[k + 1])])
         return error[rows], jacobian[rows]
     return function
 
 
-def _grasp_target(setup: MotionSetup, tcp_in_grasp: np.ndarray):
-    def target_of(theta: float, phi: float):
-        pose = setup.door.grasp_pose(theta, phi) @ tcp_in_grasp
-        return pose, setup.door.pose_derivatives(theta, phi)
-    return target_of
+@dataclass(frozen=True)
+class _GraspTarget:
+    """The TCP target on the door at (θ, φ) and its derivatives ∂(p, ω)/∂(θ, φ)."""
+
+    door: DoorModel
+    tcp_in_grasp: np.ndarray
+
+    def pose(self, theta: float, phi: float) -> np.ndarray:
+        return self.door.grasp_pose(theta, phi) @ self.tcp_in_grasp
+
+    def derivatives(self, theta: float, phi: float) -> np.ndarray:
+        return self.door.pose_derivatives(theta, phi)
 
 
-def _fixed_target(pose: np.ndarray):
-    return lambda theta, phi: (pose, np.zeros((6, 2)))
+@dataclass(frozen=True)
+class _FixedTarget:
+    target: np.ndarray
+
+    def pose(self, theta: float, phi: float) -> np.ndarray:
+        return self.target
+
+    def derivatives(self, theta: float, phi: float) -> np.ndarray:
+        return np.zeros((6, 2))
+
+
+def _grasp_target(setup: MotionSetup, tcp_in_grasp: np.ndarray) -> _GraspTarget:
+    return _GraspTarget(setup.door, tcp_in_grasp)
+
+
+def _fixed_target(pose: np.ndarray) -> _FixedTarget:
+    return _FixedTarget(pose)
 
 
 def _com_in_polygon(setup: MotionSetup, margin: float):
@@ -136,7 +160,7 @@ def _com_in_polygon(setup: MotionSetup, margin: float):
     signs = np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, -1.0], [0.0, 1.0]])
     bounds = np.array([-x_min, x_max, -y_min, y_max])
 
-    def function(q: np.ndarray):
+    def function(q: np.ndarray, need_jacobian: bool):
         com, jacobian = setup.chain.com_and_jacobian(q[:k])
         value = signs @ com[:2] - bounds + margin
         return value, np.hstack([signs @ jacobian[:2], np.zeros((4, 2))])
@@ -149,7 +173,7 @@ def _elbow_clearance(setup: MotionSetup, options: MotionOptions):
     normal = setup.door.normal
     face = setup.door.grasp_point - options.lever_standoff * normal
 
-    def function(q: np.ndarray):
+    def function(q: np.ndarray, need_jacobian: bool):
         point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
         value = np.array([options.wall_clearance - (point - face) @ normal])
         return value, np.hstack([-(normal @ jacobian)[None, :], np.zeros((1, 2))])
@@ -170,7 +194,7 @@ def _doorway_clearance(setup: MotionSetup, options: MotionOptions):
     limit = setup.door_width - options.post_inset - options.forearm_clearance
     slope, free_distance = 3.0, 0.03
 
-    def function(q: np.ndarray):
+    def function(q: np.ndarray, need_jacobian: bool):
         values, rows = [], []
         for frame in frames:
             point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
@@ -271,7 +295,7 @@ def _closed_chain(setup: MotionSetup, start_chain: np.ndarray, options: MotionOp
     guess = np.empty((n, m))
     q = start_chain
     for t in range(n):  # continuation IK along the door path
-        q = solve_ik(setup.chain, target(*door_path[t])[0], q, IkOptions(max_iterations=60)).chain_q if t else q
+        q = solve_ik(setup.chain, target.pose(*door_path[t]), q, IkOptions(max_iterations=60)).chain_q if t else q
         guess[t] = np.concatenate([q, door_path[t]])
     return MotionProblem(problem, guess, setup.chain)
 
@@ -320,9 +344,11 @@ def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
 
 
 def _ready(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
-    """Back to the nominal (walking) posture of the chain."""
+    """The walking posture. Pull doors: the opening arm back to the nominal posture (the
+    other arm blocks the door). Push doors: the opened hand stays where it is, as a stop
+    the closer pushes the door against, and pushes the door open as the robot walks."""
     nominal = setup.chain.chain_of(setup.chain.kinematics.nominal_q)
-    end = np.concatenate([nominal, setup.start_door])
+    end = np.concatenate([start_chain if setup.door.push else nominal, setup.start_door])
     problem = _problem(setup, start_chain, options, (False, False), [], end=end)
     return MotionProblem(problem, problem.linear_interpolation(end), setup.chain)
 

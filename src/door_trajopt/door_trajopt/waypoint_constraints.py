@@ -1,6 +1,7 @@
 """Constraint blocks built from per-waypoint functions (block-diagonal Jacobians).
 
-A waypoint function maps one waypoint q_t (m,) to (value (r,), jacobian (r, m)); applied
+A waypoint function maps one waypoint q_t (m,) to (value (r,), jacobian (r, m) — computed
+only when asked for, since solvers evaluate values far more often); applied
 at the waypoints ``at`` it becomes a :class:`~door_trajopt.problem.Constraint` with a
 fixed structural pattern (r rows per waypoint, its own m columns), which the SQP backend
 needs to set OSQP up once.
@@ -15,7 +16,8 @@ import scipy.sparse as sp
 
 from door_trajopt.problem import Constraint, ConstraintKind, ResidualCost
 
-WaypointFunction = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]]
+WaypointFunction = Callable[[np.ndarray, bool], tuple[np.ndarray, np.ndarray | None]]
+"""f(q_t, need_jacobian) → (value, jacobian or None when not needed)."""
 
 
 def _block_indices(at: Sequence[int], rows: int, m: int) -> tuple[np.ndarray, np.ndarray]:
@@ -39,10 +41,10 @@ def _callbacks(function: WaypointFunction, at: Sequence[int], rows: int, m: int,
     shape = (rows * len(at), n * m)
 
     def value(trajectory: np.ndarray) -> np.ndarray:
-        return np.concatenate([function(trajectory[t])[0] for t in at])
+        return np.concatenate([function(trajectory[t], False)[0] for t in at])
 
     def jacobian(trajectory: np.ndarray) -> sp.csr_matrix:
-        entries = np.concatenate([function(trajectory[t])[1].ravel() for t in at])
+        entries = np.concatenate([function(trajectory[t], True)[1].ravel() for t in at])
         return sp.csr_matrix((entries, (row_index, col_index)), shape=shape)
 
     return value, jacobian

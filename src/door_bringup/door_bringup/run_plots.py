@@ -1,0 +1,104 @@
+"""Plots of a run, drawn from its rosbag (the bag is the run's complete audit trail).
+
+* ``footsteps.png``: top view of the door estimate, the executed footstep plans and the
+  base's path from /odom;
+* ``trajectories.png``: each planned motion's joints, initial guess (dashed) against the
+  optimised trajectory (solid), like seed 000's Fig. 4;
+* ``detection.png``: the detector's last debug image (overlay of door and handle).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from rclpy.serialization import deserialize_message  # noqa: E402
+
+from door_bringup.bags.storage import read_messages  # noqa: E402
+from door_contract.converters.footsteps import Foot, path_to_footsteps  # noqa: E402
+from door_contract.converters.image import image_to_array  # noqa: E402
+from door_contract.topics import Topics  # noqa: E402
+
+
+def _messages(bag: Path, topic) -> list:
+    return [deserialize_message(m.data, topic.msg_class()) for m in read_messages(bag, [topic.name])]
+
+
+def plot_footsteps(bag: Path, output: Path) -> Path | None:
+    plans = _messages(bag, Topics.FOOTSTEP_PLAN)
+    odometry = _messages(bag, Topics.ODOM)
+    estimates = [json.loads(m.data) for m in _messages(bag, Topics.DOOR_ESTIMATE)]
+    if not (plans or odometry):
+        return None
+    figure, axes = plt.subplots(figsize=(7, 6))
+    if estimates:
+        corners = np.array(estimates[-1]["corners"])
+        axes.plot(corners[:2, 0], corners[:2, 1], "k-", linewidth=4, label="door (estimate)")
+        handle = estimates[-1]["handle_position"]
+        axes.plot(handle[0], handle[1], "r*", markersize=12, label="handle")
+    for plan in plans:
+        for step in path_to_footsteps(plan):
+            colour = "tab:blue" if step.foot is Foot.LEFT else "tab:orange"
+            axes.add_patch(plt.Rectangle((step.x - 0.11, step.y - 0.065), 0.22, 0.13,
+                                         angle=np.degrees(step.yaw), rotation_point="center",
+                                         fill=False, edgecolor=colour))
+    if odometry:
+        path = np.array([[o.pose.pose.position.x, o.pose.pose.position.y] for o in odometry])
+        axes.plot(path[:, 0], path[:, 1], "g-", label="base (odom)")
+    axes.set_aspect("equal")
+    axes.set_xlabel("x (m, odom)")
+    axes.set_ylabel("y (m)")
+    axes.set_title("Footsteps (blue left, orange right), top view")
+    axes.legend(loc="best")
+    axes.autoscale_view()
+    figure.savefig(output, dpi=110, bbox_inches="tight")
+    plt.close(figure)
+    return output
+
+
+def plot_trajectories(bag: Path, output: Path) -> Path | None:
+    outcomes = [json.loads(m.data) for m in _messages(bag, Topics.MOTION_OUTCOME)]
+    motions = [o for o in outcomes if o.get("details", {}).get("optimised")]
+    if not motions:
+        return None
+    figure, axes = plt.subplots(len(motions), 1, figsize=(8, 2.6 * len(motions)), squeeze=False)
+    for axis, outcome in zip(axes[:, 0], motions):
+        details = outcome["details"]
+        guess, optimised = np.array(details["initial_guess"]), np.array(details["optimised"])
+        for j, name in enumerate(details["joint_names"]):
+            line, = axis.plot(optimised[:, j], label=name)
+            axis.plot(guess[:, j], "--", color=line.get_color(), alpha=0.6)
+        axis.set_title(f"request {outcome['request_id']}: cost {details.get('cost')}, "
+                       f"{outcome['planning_time_s'] * 1000:.0f} ms (dashed: initial guess)", fontsize=9)
+        axis.set_ylabel("rad")
+    axes[-1, 0].set_xlabel("waypoint")
+    axes[0, 0].legend(fontsize=6, ncol=3, loc="best")
+    figure.tight_layout()
+    figure.savefig(output, dpi=100)
+    plt.close(figure)
+    return output
+
+
+def save_detection(bag: Path, output: Path) -> Path | None:
+    images = list(read_messages(bag, [Topics.DETECTION_DEBUG_IMAGE.name]))
+    if not images:
+        return None
+    image = image_to_array(deserialize_message(images[-1].data, Topics.DETECTION_DEBUG_IMAGE.msg_class()))
+    plt.imsave(output, image)
+    return output
+
+
+def plot_run(run_dir: Path) -> list[Path]:
+    """Every plot the run's bag allows; returns the files written."""
+    bag = run_dir / "bag"
+    if not (bag / "metadata.yaml").is_file():
+        return []
+    written = [plot_footsteps(bag, run_dir / "footsteps.png"),
+               plot_trajectories(bag, run_dir / "trajectories.png"),
+               save_detection(bag, run_dir / "detection.png")]
+    return [path for path in written if path is not None]
