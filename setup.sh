@@ -55,6 +55,6 @@ step "colcon build (ros_ws)"
    --event-handlers console_direct- 2>&1 | tail -n 3)
 
 if ((run_main)); then
-  step "Main job: start the node graph, check every node is up, stop it"
-  .venv/bin/python -m door_bringup.graph --check
+  step "Main job: the door task in simulation (python -m door_bringup.door_task; options: --help)"
+  .venv/bin/python -m door_bringup.door_task
 fi
