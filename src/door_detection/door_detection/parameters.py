@@ -9,4 +9,14 @@ DETECTOR_PARAMETERS = (
                   "(seed 001 Sec. III-A: 10)", minimum=1, maximum=100),
     ParameterSpec("door_width_min", 0.80, "narrowest door accepted", unit="m", minimum=0.3, maximum=2.0),
     ParameterSpec("door_width_max", 1.00, "widest door accepted", unit="m", minimum=0.3, maximum=2.5),
+    ParameterSpec("nominal_door_width", 0.914, "door width assumed when only the handle is measured "
+                  "(operator-aided mode)", unit="m", minimum=0.3, maximum=2.5),
+    ParameterSpec("nominal_door_height", 2.083, "door height assumed for the corners", unit="m",
+                  minimum=1.0, maximum=4.0),
+    ParameterSpec("grasp_to_free_edge", 0.136, "handle grasp point to the leaf's free edge (backset + "
+                  "lever grasp radius)", unit="m", minimum=0.0, maximum=0.5),
+    ParameterSpec("scribble_timeout", 30.0, "a scribble is used for frames up to this old", unit="s",
+                  minimum=0.1, maximum=600.0),
+    ParameterSpec("sync_tolerance", 0.05, "largest stamp difference matched between colour, depth, "
+                  "camera info and camera pose", unit="s", minimum=0.0, maximum=1.0),
 )

@@ -1,0 +1,83 @@
+"""Automatic detection (seed 001 Sec. III-A) on rendered scenes."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from door_detection.automatic import detect_automatic
+from door_detection.estimate import DetectionMode, DetectionOutcome, Side
+from door_detection.options import DetectionOptions
+from helpers_detection import angle_deg, handle_error
+
+
+def test_sim_door_at_two_metres_straight_on(straight_on) -> None:
+    result = detect_automatic(straight_on.rgb, straight_on.depth, straight_on.intrinsics)
+    assert result.outcome is DetectionOutcome.DETECTED, result.reason
+    estimate = result.estimate
+    assert handle_error(estimate.handle_position, straight_on.handle_position) < 0.02
+    assert angle_deg(estimate.normal, straight_on.normal) < 2.0
+    assert estimate.hinge_side is Side.LEFT
+    assert estimate.mode is DetectionMode.AUTOMATIC
+    assert 0.80 <= estimate.width <= 1.00
+    assert 0.0 < estimate.confidence <= 1.0
+
+
+def test_estimate_geometry_is_consistent(straight_on) -> None:
+    estimate = detect_automatic(straight_on.rgb, straight_on.depth, straight_on.intrinsics).estimate
+    assert estimate.normal @ -estimate.handle_position > 0          # faces the camera
+    corners = estimate.corners
+    assert corners[0, 0] < corners[1, 0] and corners[3, 0] < corners[2, 0]   # left before right
+    assert corners[0, 1] > corners[3, 1]                             # bottom below top (y down)
+    assert np.allclose((corners - corners.mean(axis=0)) @ estimate.normal, 0.0, atol=1e-6)
+    pose = estimate.handle_pose()
+    assert np.allclose(pose[:3, :3].T @ pose[:3, :3], np.eye(3), atol=1e-9)
+    assert np.isclose(np.linalg.det(pose[:3, :3]), 1.0)
+    assert angle_deg(pose[:3, 2], -straight_on.up) > 170             # z is the world's up …
+    assert angle_deg(pose[:3, 2], straight_on.up) < 1.0              # … from the door's edges
+
+
+def test_right_hinged_oblique_noisy_door(sim_scene) -> None:
+    scene = sim_scene(3.0, -0.4, 0.003, Side.RIGHT)
+    result = detect_automatic(scene.rgb, scene.depth, scene.intrinsics)
+    assert result.ok, result.reason
+    assert result.estimate.hinge_side is Side.RIGHT
+    assert handle_error(result.estimate.handle_position, scene.handle_position) < 0.02
+    assert angle_deg(result.estimate.normal, scene.normal) < 2.0
+
+
+def test_hinge_side_prior_restricts_the_search(straight_on) -> None:
+    wrong = detect_automatic(straight_on.rgb, straight_on.depth, straight_on.intrinsics,
+                             hinge_side=Side.RIGHT)
+    assert wrong.outcome is DetectionOutcome.NO_HANDLE
+    right = detect_automatic(straight_on.rgb, straight_on.depth, straight_on.intrinsics,
+                             hinge_side=Side.LEFT)
+    assert right.ok
+
+
+def test_independent_pybullet_scene(fixture_scene) -> None:
+    result = detect_automatic(fixture_scene.rgb, fixture_scene.depth, fixture_scene.intrinsics)
+    assert result.ok, result.reason
+    assert handle_error(result.estimate.handle_position, fixture_scene.handle_position) < 0.02
+    assert angle_deg(result.estimate.normal, fixture_scene.normal) < 2.0
+
+
+def test_width_outside_the_range_is_no_door_pair(straight_on) -> None:
+    narrow = DetectionOptions(door_width_min=0.3, door_width_max=0.6)
+    result = detect_automatic(straight_on.rgb, straight_on.depth, straight_on.intrinsics, narrow)
+    assert result.outcome is DetectionOutcome.NO_DOOR_PAIR
+    assert "0.3–0.6 m" in result.reason
+
+
+def test_a_blank_wall_has_no_lines(straight_on) -> None:
+    wall = np.full_like(straight_on.rgb, 120)
+    result = detect_automatic(wall, straight_on.depth, straight_on.intrinsics)
+    assert result.outcome is DetectionOutcome.NO_VERTICAL_LINES
+
+
+def test_a_flat_painted_door_without_depth_step_still_needs_a_plane(straight_on) -> None:
+    """Scrambling the depth inside the door breaks the diagonal plane check."""
+    depth = straight_on.depth.copy()
+    rng = np.random.default_rng(1)
+    depth[:, 380:640] = rng.uniform(1.0, 6.0, size=depth[:, 380:640].shape).astype(np.float32)
+    result = detect_automatic(straight_on.rgb, depth, straight_on.intrinsics)
+    assert result.outcome in (DetectionOutcome.NO_DOOR_PLANE, DetectionOutcome.NO_DOOR_PAIR)

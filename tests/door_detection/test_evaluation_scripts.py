@@ -1,0 +1,59 @@
+"""The evaluation scripts and the benchmark run and return sane numbers (no timing asserts)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from door_detection import benchmark, evaluate_photos, evaluate_sim
+from door_detection.options import DetectionOptions
+from door_detection.progress import ProgressBar
+
+
+def test_photo_evaluation_on_three_labelled_photos(shared_data) -> None:
+    images = [image for image in evaluate_photos.load_dataset(shared_data / "doors" / "detectdoor")
+              if image.of_class(evaluate_photos.DOOR)][:3]
+    assert len(images) == 3
+    report = evaluate_photos.evaluate(images, progress=False)
+    assert report.images == 3 and report.doors >= 3 and report.handles >= 3
+    for value in (report.door_found, report.door_top1_precision, report.handle_found,
+                  report.handle_centre_hit):
+        assert 0.0 <= value <= 1.0
+    assert math.isnan(report.door_false_detections)          # no image without doors among the 3
+    assert "doors found" in report.text()
+
+
+def test_photo_labels_are_parsed_in_pixels(shared_data) -> None:
+    dataset = evaluate_photos.load_dataset(shared_data / "doors" / "detectdoor")
+    images = {image.path.stem: image for image in dataset}
+    door = images["000c9e454bbf6d0d"].of_class(evaluate_photos.DOOR)[0]   # 678×1024, cx 0.477
+    assert door[0] == pytest.approx((0.477344 - 0.479688 / 2) * 678, abs=0.5)
+    assert images["00eb261110ac46c5"].boxes == ()                         # a negative
+
+
+def test_sim_evaluation_on_a_tiny_grid(capsys) -> None:
+    grid = evaluate_sim.EvaluationGrid(distances=(2.0,), yaws=(0.0,), noises=(0.0,))
+    outcomes = evaluate_sim.run_evaluation(grid, DetectionOptions(), progress=False)
+    assert len(outcomes) == 1
+    assert outcomes[0].automatic.success and outcomes[0].operator.success
+    text = evaluate_sim.report(outcomes, grid)
+    assert "2.0 m |" in text and "1/1" in text and "Table II" in text
+
+
+def test_benchmark_report(straight_on) -> None:
+    automatic, operator = benchmark.benchmark_scene(straight_on, DetectionOptions(), repeats=2)
+    assert automatic.success and operator.success and len(automatic.seconds) == 2
+    text = benchmark.report([(automatic, operator)])
+    assert "paper   2050 ms/frame" in text and "faster" in text
+
+
+def test_progress_bar_writes_to_its_stream() -> None:
+    import io
+
+    stream = io.StringIO()
+    bar = ProgressBar(2, stream=stream)
+    bar.advance("one")
+    bar.advance("two")
+    bar.close()
+    assert "2/2" in stream.getvalue() and stream.getvalue().endswith("\n")
