@@ -105,6 +105,7 @@ class FootstepRequest:
     goal: str  # "stand" | "through"
     opening: str  # "push" | "pull"
     door_angle: float = 0.0
+    door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
 
 
 @dataclasses.dataclass(frozen=True)
@@ -116,6 +117,7 @@ class MotionRequest:
     opening: str  # "push" | "pull"
     backend: str = ""  # "sqp" | "chomp"; empty = the node's parameter
     door_angle: float = 0.0
+    door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
 
 
 @dataclasses.dataclass(frozen=True)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from door_contract.payloads import DoorEstimate, HingeSide
@@ -12,6 +14,11 @@ from door_sim_bridge.world import HingeSide as SimHingeSide
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.motions import MotionSetup, support_polygon
+from footstep_planner.door import DoorGeometry
+from footstep_planner.door import DoorOpening as PlannerOpening
+from footstep_planner.door import HingeSide as PlannerHinge
+from footstep_planner.footstep_planner_node import planner_options
+from footstep_planner.goals import stand_pose_for_opening
 
 
 def estimate_from_world(world: DoorWorld) -> DoorEstimate:
@@ -24,14 +31,17 @@ def estimate_from_world(world: DoorWorld) -> DoorEstimate:
 
 def stand_world(opening: DoorOpening = DoorOpening.PUSH, hinge: SimHingeSide = SimHingeSide.LEFT,
                 reach: float = 0.5, handle_offset: float = 0.2) -> DoorWorld:
-    """The robot facing the door ``reach`` m from its plane, ``handle_offset`` m to the hinge
-    side of the handle (the footstep planner's stand pose)."""
+    """The robot where the footstep planner's stand pose puts it for this door (facing it,
+    ``reach`` m from its plane; for pull doors outside the leaf's sweep)."""
     door = DoorConfig(opening=opening, hinge_side=hinge)
     probe = DoorWorld(WorldConfig(door=door))
-    handle_y = float(probe.door_ground_truth().handle_grasp_pose[1, 3])
+    estimate = estimate_from_world(probe)
     probe.close()
-    lateral = handle_y + hinge.sign * handle_offset
-    return DoorWorld(WorldConfig(door=door, stance=StanceConfig(distance=reach, lateral_offset=lateral)))
+    options = planner_options("talos", {"heuristic_weight": 1.0, "max_expansions": 1000, "max_planning_time": 1.0})
+    geometry = DoorGeometry.from_handle(estimate.handle_position[0] + 0.06, estimate.handle_position[1], math.pi,
+                                        PlannerHinge(hinge.value), PlannerOpening(opening.value))
+    stand = stand_pose_for_opening(geometry, options, reach=reach, handle_offset=handle_offset)
+    return DoorWorld(WorldConfig(door=door, stance=StanceConfig(distance=-stand.x, lateral_offset=stand.y)))
 
 
 def motion_setup(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate,

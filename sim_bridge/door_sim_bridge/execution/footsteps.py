@@ -33,7 +33,7 @@ from door_sim_bridge.execution.base import Execution
 from door_sim_bridge.world.transforms import planar, yaw_of
 from door_sim_bridge.world.world import DoorWorld
 
-LIMIT_TOLERANCE = 1e-6
+LIMIT_TOLERANCE = 0.005  # m or rad: planners round to their grids; a few mm more is still a safe step
 
 
 def wrap_angle(angle: float) -> float:

@@ -44,6 +44,7 @@ class FsmSupervisorNode(Node):
             max_repeats=p["max_repeats"]))
         self.heartbeat = Heartbeat(self)
         self.door: DoorEstimate | None = None
+        self.approved_door: DoorEstimate | None = None  # the estimate DETECT_DOOR proposed
         self.door_angle = 0.0  # rad, as left by the last executed door motion
         self._planned_door_angle = 0.0  # rad, at the end of the motion being executed
         self._detection_request: int | None = None
@@ -92,6 +93,7 @@ class FsmSupervisorNode(Node):
         self.door = estimate
         if self._detection_request is not None:
             request, self._detection_request = self._detection_request, None
+            self.approved_door = estimate
             self._feed(ev.ProposalReady(request, door_summary(estimate)))
 
     def _on_proposal_message(self, msg: Path | JointTrajectory) -> None:
@@ -199,16 +201,23 @@ class FsmSupervisorNode(Node):
         self._detection_request = action.request_id
 
     def _do_RequestFootsteps(self, action: act.RequestFootsteps) -> None:
-        request = FootstepRequest(action.request_id, action.goal, self.parameters["opening"], self.door_angle)
+        request = FootstepRequest(action.request_id, action.goal, self.parameters["opening"], self.door_angle,
+                                  self._approved_door_stamp())
         self.footstep_request_pub.publish(String(data=encode(request)))
 
     def _do_RequestMotion(self, action: act.RequestMotion) -> None:
         request = MotionRequest(action.request_id, action.motion, self.parameters["opening"],
-                                self.parameters["backend"], self.door_angle)
+                                self.parameters["backend"], self.door_angle, self._approved_door_stamp())
         self.motion_request_pub.publish(String(data=encode(request)))
 
+    def _approved_door_stamp(self) -> float:
+        """The stamp of the door estimate DETECT_DOOR accepted: later estimates (seen up close,
+        while walking) do not silently replace what the operator approved."""
+        return self.approved_door.stamp if self.approved_door is not None else -1.0
+
     def _do_CallGrasp(self, action: act.CallGrasp) -> None:
-        hand = self.door.hinge_side.grasp_hand(self.parameters["opening"]) if self.door else "right"
+        door = self.approved_door or self.door
+        hand = door.hinge_side.grasp_hand(self.parameters["opening"]) if door else "right"
         client = self.grasp_clients[hand]
         if not client.service_is_ready():
             self._feed(ev.GraspAnswered(action.request_id, False, f"/{hand}_hand/grasp is not available"))

@@ -14,10 +14,10 @@ from enum import Enum
 import numpy as np
 
 from door_contract.converters.trajectory import JointPath
-from door_trajopt.chomp import ChompSolver
+from door_trajopt.chomp import ChompOptions, ChompSolver
 from door_trajopt.motions import Motion, MotionOptions, MotionProblem, MotionSetup, anchored_to_hand, build_motion
 from door_trajopt.result import OptimizationResult, Outcome
-from door_trajopt.sqp import SqpSolver
+from door_trajopt.sqp import SqpOptions, SqpSolver
 from door_trajopt.timing import time_parameterise
 
 
@@ -47,6 +47,8 @@ class MotionLibrary:
     starts: int = 3  # initial guesses tried (seed 001 Sec. IV: multiple random guesses)
     velocity_scale: float = 0.5
     door_velocity_limits: tuple[float, float] = (0.15, 0.5)  # rad/s of hinge and handle: a door is heavy
+    max_iterations: int = 120  # per initial guess (SQP QP solves / CHOMP updates)
+    time_budget_s: float = 10.0  # no further initial guess is tried after this
     seed: int = 0
     _cache: dict = field(default_factory=dict)  # motion → last feasible trajectory (n, m)
 
@@ -57,9 +59,13 @@ class MotionLibrary:
             setup = anchored_to_hand(setup, start_chain)
         built = build_motion(motion, setup, start_chain, self.options)
         rng = np.random.default_rng(self.seed)
-        solver = SqpSolver(built.problem) if backend is Backend.SQP else ChompSolver(built.problem)
+        solver = (SqpSolver(built.problem, SqpOptions(max_iterations=self.max_iterations))
+                  if backend is Backend.SQP else
+                  ChompSolver(built.problem, ChompOptions(max_iterations=self.max_iterations)))
         result, attempts, used_guess = None, 0, None
         for guess in self._guesses(motion, built, rng):  # one solver: its factorisation is reused
+            if attempts and time.perf_counter() - started > self.time_budget_s:
+                break
             attempts += 1
             result, used_guess = solver.solve(guess), guess
             if result.outcome is Outcome.SUCCESS:

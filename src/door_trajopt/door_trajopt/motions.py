@@ -62,7 +62,7 @@ class MotionOptions:
     waypoints: int = 16
     handle_turn: float = 0.8  # rad; seed 001 turned ~80°, the DRC-like sim handle stops at 1.0 rad
     push_angle: float = 0.2  # rad the arm pushes the door open (the body pushes it further)
-    pull_angle: float = 0.6  # rad (~35°; seed 001: ~40°)
+    pull_angle: float = 0.35  # rad (~20°; seed 001: ~40°, TALOS reaches less from outside the sweep)
     pregrasp_offset: float = 0.04  # m, seed 001 Sec. II
     com_margin: float = 0.02  # m inside the support polygon
     wall_clearance: float = 0.04  # m, elbow in front of the door plane
@@ -208,10 +208,14 @@ def _doorway_clearance(setup: MotionSetup, options: MotionOptions):
 
 
 # --------------------------------------------------------------------- problem assembly
-def _limits(setup: MotionSetup, door_moves: tuple[bool, bool]) -> JointLimits:
+def _limits(setup: MotionSetup, door_moves: tuple[bool, bool], start_chain: np.ndarray,
+            pinned: tuple[str, ...] = ()) -> JointLimits:
     chain = setup.chain
     lower = [*chain.lower, *(HINGE_LIMITS[0], HANDLE_LIMITS[0])]
     upper = [*chain.upper, *(HINGE_LIMITS[1], HANDLE_LIMITS[1])]
+    for index, name in enumerate(chain.joint_names):
+        if name in pinned:  # e.g. the torso while the other hand holds the door
+            lower[index] = upper[index] = float(start_chain[index])
     for dof, moves in enumerate(door_moves):
         if not moves:  # a door DOF that does not move is pinned by its bounds
             lower[chain.size + dof] = upper[chain.size + dof] = setup.start_door[dof]
@@ -219,7 +223,7 @@ def _limits(setup: MotionSetup, door_moves: tuple[bool, bool]) -> JointLimits:
 
 
 def _problem(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions, door_moves,
-             constraints, end: np.ndarray | None = None) -> TrajectoryProblem:
+             constraints, end: np.ndarray | None = None, pinned: tuple[str, ...] = ()) -> TrajectoryProblem:
     chain = setup.chain
     m = chain.size + 2
     start = np.concatenate([start_chain, setup.start_door])
@@ -229,7 +233,7 @@ def _problem(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions
                                   _com_in_polygon(setup, options.com_margin), 4,
                                   range(1, options.waypoints), m, options.waypoints)]
     return TrajectoryProblem(
-        n_waypoints=options.waypoints, start=start, limits=_limits(setup, door_moves), end=end,
+        n_waypoints=options.waypoints, start=start, limits=_limits(setup, door_moves, start_chain, pinned), end=end,
         smoothness=SmoothnessSpec(), posture=PostureCost(nominal, posture_weights),
         constraints=tuple(constraints) + tuple(common),
         dof_names=(*chain.joint_names, "door_hinge", "door_handle"))
@@ -337,8 +341,12 @@ def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
     constraints = [waypoint_constraint("block_position", ConstraintKind.EQUALITY,
                                        _tcp_target_error(setup.chain, _fixed_target(target), POSITION_MASK),
                                        3, [n - 1], m, n)]
-    problem = _problem(setup, start_chain, options, (False, False), constraints)
-    q_end = _ik(setup.chain, target, start_chain, POSITION_MASK)
+    # the other hand still holds the handle: joints both arms share (the torso) must not move
+    other = setup.chain.kinematics.profile.arm(setup.chain.side.other).joints
+    pinned = tuple(name for name in setup.chain.joint_names if name in other)
+    problem = _problem(setup, start_chain, options, (False, False), constraints, pinned=pinned)
+    q_end = np.clip(_ik(setup.chain, target, start_chain, POSITION_MASK), problem.limits.lower[:setup.chain.size],
+                    problem.limits.upper[:setup.chain.size])
     guess = _through_keys(problem, [(0, start_chain), (n - 1, q_end)], setup.start_door)
     return MotionProblem(problem, guess, setup.chain)
 

@@ -15,9 +15,11 @@ OPTIMIZER_PARAMETERS = (
                   minimum=1, maximum=20),
     ParameterSpec("handle_turn", 0.8, "handle turn angle (seed 001: ~80°; the sim handle stops at 1.0)",
                   unit="rad", minimum=0.1, maximum=1.0),
-    ParameterSpec("push_angle", 0.3, "door angle the arm pushes to", unit="rad", minimum=0.05, maximum=1.5),
-    ParameterSpec("pull_angle", 0.6, "door angle the arm pulls to (seed 001: ~40°)", unit="rad",
+    ParameterSpec("push_angle", 0.2, "door angle the arm pushes to; the body pushes it further while "
+                  "walking (beyond ~0.3 rad TALOS's forearm meets the latch-side post)", unit="rad",
                   minimum=0.05, maximum=1.5),
+    ParameterSpec("pull_angle", 0.35, "door angle the arm pulls to (seed 001: ~40°; TALOS reaches ~0.35 "
+                  "from a stance outside the sweep)", unit="rad", minimum=0.05, maximum=1.5),
     ParameterSpec("lever_radius", 0.066, "lever axis to grasp point", unit="m", minimum=0.0, maximum=0.2),
     ParameterSpec("state_timeout", 1.0, "joint states / odometry older than this are stale", unit="s",
                   minimum=0.05, maximum=60.0),

@@ -20,6 +20,7 @@ from door_contract.converters.diagnostics import Health
 from door_contract.converters.joint_state import joint_state_to_positions
 from door_contract.converters.pose import pose_to_matrix
 from door_contract.converters.trajectory import joint_path_to_msg
+from door_contract.door_estimates import DoorEstimateHistory
 from door_contract.errors import ContractError
 from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
                                         declare_parameters, run_node)
@@ -51,7 +52,7 @@ class TrajectoryOptimizerNode(Node):
         self.lever_radius = p["lever_radius"]
         self.joint_positions: dict[str, float] | None = None
         self.base_pose: np.ndarray | None = None
-        self.door: DoorEstimate | None = None
+        self.doors = DoorEstimateHistory()
         self.heartbeat = Heartbeat(self)
         self.trajectory_pub = create_contract_publisher(self, Topics.MOTION_PROPOSAL)
         self.outcome_pub = create_contract_publisher(self, Topics.MOTION_OUTCOME)
@@ -77,7 +78,7 @@ class TrajectoryOptimizerNode(Node):
 
     def _on_door(self, msg: String) -> None:
         try:
-            self.door = decode(DoorEstimate, msg.data)
+            self.doors.add(decode(DoorEstimate, msg.data))
         except ContractError as error:
             self.get_logger().warning(f"door estimate rejected: {error}")
 
@@ -110,19 +111,21 @@ class TrajectoryOptimizerNode(Node):
         except ValueError:
             raise PlanningRefused(f"unknown motion {request.motion!r}; known: "
                                   + ", ".join(m.value for m in Motion)) from None
-        if self.door is None:
-            raise PlanningRefused("no door estimate yet")
+        estimate = self.doors.pick(request.door_stamp)
+        if estimate is None:
+            raise PlanningRefused("no door estimate yet" if request.door_stamp < 0 else
+                                  f"door estimate of stamp {request.door_stamp:.3f} s was not received")
         if self.joint_positions is None or self.base_pose is None:
             raise PlanningRefused("no valid joint states / odometry yet")
         backend = Backend(request.backend or self.parameters["backend"])
         body_q = self.kinematics.configuration(
             {k: v for k, v in self.joint_positions.items() if k in self.kinematics.joint_names})
-        hand = Side(self.door.hinge_side.grasp_hand(request.opening))
+        hand = Side(estimate.hinge_side.grasp_hand(request.opening))
         side = hand.other if motion.uses_other_arm else hand
         chain = ArmChain(self.kinematics, side, body_q)
-        door = door_model_from_estimate(self.door, np.linalg.inv(self.base_pose),
+        door = door_model_from_estimate(estimate, np.linalg.inv(self.base_pose),
                                         push=request.opening == "push", lever_radius=self.lever_radius)
-        setup = MotionSetup(chain, door, self.door.width, support_polygon(chain),
+        setup = MotionSetup(chain, door, estimate.width, support_polygon(chain),
                             start_door_for(motion, request.door_angle, self.library.options))
         self.get_logger().info(f"planning {motion.value} with the {side.value} arm ({backend.value})")
         return self.library.plan(motion, setup, chain.chain_of(body_q), backend)

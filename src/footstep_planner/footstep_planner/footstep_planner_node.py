@@ -21,6 +21,7 @@ from door_contract.converters.diagnostics import Health
 from door_contract.converters.footsteps import Foot as ContractFoot
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
 from door_contract.converters.pose import pose_to_matrix, yaw_of
+from door_contract.door_estimates import DoorEstimateHistory
 from door_contract.errors import ContractError, ParameterRangeError
 from door_contract.frames import Frame
 from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
@@ -65,7 +66,7 @@ class FootstepPlannerNode(Node):
         except FootstepPlannerError as error:
             raise ParameterRangeError(f"footstep planner options: {error}") from None
         self.base_pose: np.ndarray | None = None
-        self.door: DoorEstimate | None = None
+        self.doors = DoorEstimateHistory()
         self.passage_angle: float | None = None
         self.heartbeat = Heartbeat(self)
         self.plan_pub = create_contract_publisher(self, Topics.FOOTSTEP_PROPOSAL)
@@ -87,10 +88,11 @@ class FootstepPlannerNode(Node):
 
     def _on_door(self, msg: String) -> None:
         try:
-            self.door = decode(DoorEstimate, msg.data)
+            self.doors.add(decode(DoorEstimate, msg.data))
         except ContractError as error:
             self.get_logger().warning(f"door estimate rejected: {error}")
-        self.heartbeat.values["door"] = "" if self.door is None else f"{self.door.stamp:.3f}"
+        latest = self.doors.latest
+        self.heartbeat.values["door"] = "" if latest is None else f"{latest.stamp:.3f}"
 
     def _on_request(self, msg: String) -> None:
         try:
@@ -122,16 +124,19 @@ class FootstepPlannerNode(Node):
     def _problem(self, request: FootstepRequest) -> tuple[Stance, Pose2D, World]:
         if self.base_pose is None:
             raise RequestRefused("no valid odometry yet")
-        if self.door is None:
-            raise RequestRefused("no door estimate yet")
+        estimate = self.doors.pick(request.door_stamp)
+        if estimate is None:
+            raise RequestRefused("no door estimate yet" if request.door_stamp < 0 else
+                                 f"door estimate of stamp {request.door_stamp:.3f} s was not received")
         if request.goal not in ("stand", "through"):
             raise RequestRefused(f"unknown goal {request.goal!r}; use 'stand' or 'through'")
         body = Pose2D(float(self.base_pose[0, 3]), float(self.base_pose[1, 3]), yaw_of(self.base_pose))
         start = Stance.nominal(body, self.options.nominal_foot_separation)
-        door = self._door_geometry(request)
+        door = self._door_geometry(request, estimate)
         if request.goal == "stand":
             sweep = (0.0, math.pi / 2) if door.opening is DoorOpening.PULL else None
-            goal = stand_pose_for_opening(door, self.options, reach=self.parameters["stand_reach"],
+            reach = self.parameters["stand_reach_pull" if door.opening is DoorOpening.PULL else "stand_reach"]
+            goal = stand_pose_for_opening(door, self.options, reach=reach,
                                           handle_offset=self.parameters["stand_handle_offset"])
             return start, goal, World.from_door(door, sweep)
         angle = max(request.door_angle, self.parameters["passage_door_angle"])
@@ -141,8 +146,7 @@ class FootstepPlannerNode(Node):
         door = door.with_angle(angle)
         return start, through_door_pose(door, self.parameters["beyond_door"]), World.from_door(door)
 
-    def _door_geometry(self, request: FootstepRequest) -> DoorGeometry:
-        estimate = self.door
+    def _door_geometry(self, request: FootstepRequest, estimate: DoorEstimate) -> DoorGeometry:
         normal = np.asarray(estimate.normal[:2])
         normal_yaw = math.atan2(normal[1], normal[0])
         face = np.asarray(estimate.handle_position[:2]) - self.parameters["handle_standoff"] * normal / np.linalg.norm(normal)

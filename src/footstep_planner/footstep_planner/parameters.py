@@ -10,7 +10,10 @@ PLANNER_PARAMETERS = (
                   "slightly longer plans)", minimum=1.0, maximum=10.0),
     ParameterSpec("max_expansions", 200000, "bound on A* node expansions", minimum=100, maximum=10000000),
     ParameterSpec("max_planning_time", 2.0, "bound on planning time", unit="s", minimum=0.01, maximum=60.0),
-    ParameterSpec("stand_reach", 0.50, "base to door plane when opening", unit="m", minimum=0.2, maximum=1.5),
+    ParameterSpec("stand_reach", 0.50, "base to door plane when opening a push door", unit="m",
+                  minimum=0.2, maximum=1.5),
+    ParameterSpec("stand_reach_pull", 0.75, "base to door plane when opening a pull door (room to pull "
+                  "the handle towards the robot)", unit="m", minimum=0.2, maximum=1.5),
     ParameterSpec("stand_handle_offset", 0.20, "base to handle along the wall, towards the hinge",
                   unit="m", minimum=-0.5, maximum=0.8),
     ParameterSpec("handle_standoff", 0.06, "door face behind the handle grasp point", unit="m",
