@@ -72,6 +72,11 @@ def run_node(node_factory: Callable[[], Node], args: list[str] | None = None) ->
         return 2
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
+    except Exception:
+        if rclpy.ok():
+            raise
+        # SIGINT shut the context down while spin was building its wait set: rclpy then
+        # raises RCLError instead of ExternalShutdownException; it is still a clean stop.
     finally:
         if node is not None:
             node.destroy_node()

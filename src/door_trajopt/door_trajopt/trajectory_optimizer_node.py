@@ -93,6 +93,10 @@ class TrajectoryOptimizerNode(Node):
         except (PlanningRefused, RobotModelError, ContractError, ValueError) as error:
             self._answer(request, OutcomeStatus.REJECTED, str(error))
             return
+        except Exception as error:  # a bug must end in a failure outcome, not a dead node
+            self.get_logger().error(f"request {request.request_id} crashed the optimiser: {error!r}")
+            self._answer(request, OutcomeStatus.FAILURE, f"internal error: {error!r}")
+            return
         if not plan.succeeded:
             result = plan.result
             reason = (f"{result.outcome.value}: constraint '{result.violated_constraint}' violated by "

@@ -68,6 +68,7 @@ class FootstepPlannerNode(Node):
         self.base_pose: np.ndarray | None = None
         self.doors = DoorEstimateHistory()
         self.passage_angle: float | None = None
+        self.planned_stance: Stance | None = None  # where the last plan leaves the feet
         self.heartbeat = Heartbeat(self)
         self.plan_pub = create_contract_publisher(self, Topics.FOOTSTEP_PROPOSAL)
         self.outcome_pub = create_contract_publisher(self, Topics.FOOTSTEP_OUTCOME)
@@ -102,14 +103,19 @@ class FootstepPlannerNode(Node):
             return
         try:
             start, goal, world = self._problem(request)
+            result = FootstepPlanner(world, self.options).plan(start, goal)
         except (RequestRefused, FootstepPlannerError, ValueError) as error:
             self._answer(request, OutcomeStatus.REJECTED, str(error))
             return
-        result = FootstepPlanner(world, self.options).plan(start, goal)
+        except Exception as error:  # a bug must end in a failure outcome, not a dead node
+            self.get_logger().error(f"request {request.request_id} crashed the planner: {error!r}")
+            self._answer(request, OutcomeStatus.FAILURE, f"internal error: {error!r}")
+            return
         if not result.succeeded:
             self._answer(request, OutcomeStatus.FAILURE, f"{result.outcome.value}: {result.reason}",
                          result.planning_time, {"expansions": result.expansions})
             return
+        self.planned_stance = result.plan.final_stance
         placements = contract_footsteps(start, result.plan)
         path = footsteps_to_path(placements)
         path.header.stamp = self.get_clock().now().to_msg()
@@ -131,7 +137,7 @@ class FootstepPlannerNode(Node):
         if request.goal not in ("stand", "through"):
             raise RequestRefused(f"unknown goal {request.goal!r}; use 'stand' or 'through'")
         body = Pose2D(float(self.base_pose[0, 3]), float(self.base_pose[1, 3]), yaw_of(self.base_pose))
-        start = Stance.nominal(body, self.options.nominal_foot_separation)
+        start = self._start_stance(body)
         door = self._door_geometry(request, estimate)
         if request.goal == "stand":
             sweep = (0.0, math.pi / 2) if door.opening is DoorOpening.PULL else None
@@ -145,6 +151,20 @@ class FootstepPlannerNode(Node):
         self.passage_angle = angle
         door = door.with_angle(angle)
         return start, through_door_pose(door, self.parameters["beyond_door"]), World.from_door(door)
+
+    def _start_stance(self, body: Pose2D) -> Stance:
+        """The feet: where the last plan left them if the base stands at that stance's
+        midpoint (the plan was walked), else the nominal stance around the base.
+
+        There is no foot-pose topic (tf2 is not on PyPI); the base is the feet's midpoint.
+        """
+        planned = self.planned_stance
+        if planned is not None:
+            middle = planned.body_pose
+            if math.hypot(middle.x - body.x, middle.y - body.y) < 0.03 and \
+                    abs(math.remainder(middle.yaw - body.yaw, math.tau)) < 0.05:
+                return planned
+        return Stance.nominal(body, self.options.nominal_foot_separation)
 
     def _door_geometry(self, request: FootstepRequest, estimate: DoorEstimate) -> DoorGeometry:
         normal = np.asarray(estimate.normal[:2])

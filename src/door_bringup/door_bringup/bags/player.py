@@ -47,8 +47,15 @@ def playback_offsets(timestamps_ns: Iterable[int], rate: float) -> list[float]:
 
 
 def qos_for(topic: str) -> QoSProfile:
+    """The contract's reliability and durability for ``topic``, with a deep queue: a recorder
+    must not lose a message published right before another (a latched depth-1 topic
+    such as /door_task/approval_request is set and cleared within milliseconds)."""
     spec: TopicSpec | None = next((t for t in Topics.all() if t.name == topic), None)
-    return spec.qos.to_profile() if spec else QoSProfile(depth=100)
+    if spec is None:
+        return QoSProfile(depth=100)
+    profile = spec.qos.to_profile()
+    profile.depth = max(profile.depth, 100)
+    return profile
 
 
 class BagPlayer(Node):
