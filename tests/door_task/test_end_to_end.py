@@ -73,10 +73,9 @@ def test_recorded_camera_replayed_into_a_detector_reproduces_its_estimate(push_r
         process.send_signal(2)
         process.wait(timeout=20)
         node.destroy_node()
-    # The live detector may have joined a frame later than the recorder (or the reverse), so
-    # the voting windows can differ by a frame: the consensus must agree, not the bytes.
+    # The live detector may have joined later than the recorder (or the reverse), so the
+    # voting windows can start at different frames: the consensus must agree, not the stamp.
     first, again = recorded[0], replayed[0]
-    assert abs(again.stamp - first.stamp) <= 1.0
     assert np.linalg.norm(np.subtract(again.handle_position, first.handle_position)) < 0.005
     assert np.degrees(np.arccos(np.clip(np.dot(again.normal, first.normal), -1, 1))) < 1.0
     assert again.hinge_side == first.hinge_side
