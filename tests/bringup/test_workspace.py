@@ -2,7 +2,6 @@
 process over real DDS, shows its node in the graph and shuts down cleanly on SIGINT."""
 
 import re
-import signal
 import subprocess
 from pathlib import Path
 

@@ -2,7 +2,6 @@
 door under supervised autonomy with a scripted operator approving, recorded to a rosbag;
 then the recorded camera topics replayed into a fresh detector reproduce its estimate."""
 
-import json
 import subprocess
 
 import numpy as np

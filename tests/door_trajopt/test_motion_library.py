@@ -6,6 +6,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from door_robot.profile import Side
 from door_sim_bridge.execution import TrajectoryExecution
 from door_sim_bridge.world import DoorOpening
 from door_trajopt.door_model import rotation_vector
@@ -124,7 +125,7 @@ def test_planned_turn_and_push_open_the_simulated_door(backend):
     try:
         for motion in (Motion.APPROACH_HANDLE, "grasp", Motion.TURN_HANDLE, Motion.PUSH_DOOR):
             if motion == "grasp":
-                assert world.grasp(setup.chain.side, True).success
+                assert world.grasp(Side(estimate.hinge_side.grasp_hand("push")), True).success
                 continue
             setup = motion_setup(world, kinematics, estimate,
                                  door_angles=start_door_for(motion, door_angle, library.options))

@@ -6,7 +6,6 @@ import subprocess
 import numpy as np
 import pytest
 import rclpy
-from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.converters.joint_state import joint_state_to_positions

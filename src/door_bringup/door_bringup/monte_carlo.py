@@ -16,7 +16,6 @@ import sys
 import time
 from dataclasses import asdict, replace
 from datetime import datetime, timezone
-from pathlib import Path
 
 import numpy as np
 

@@ -42,7 +42,6 @@ def _exec(workspace: Workspace, package: str, executable: str, args: list[str]) 
 
 def _topic(args: list[str]) -> int:
     import rclpy
-    from rclpy.qos import QoSProfile
 
     from door_bringup.bags.player import qos_for
     from door_contract.topics import interface_class

@@ -33,7 +33,6 @@ from door_contract.payloads import encode
 from door_contract.stamps import from_time_msg
 from door_contract.topics import Topics
 from door_detection.automatic import detect_automatic
-from door_detection.estimate import DetectionMode
 from door_detection.markers import door_markers
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions

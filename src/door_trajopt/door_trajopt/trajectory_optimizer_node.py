@@ -11,20 +11,19 @@ non-finite inputs and infeasible plans give a failure outcome naming the reason.
 from __future__ import annotations
 
 import numpy as np
-from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.joint_state import joint_state_to_positions
-from door_contract.converters.pose import pose_to_matrix
+
 from door_contract.converters.trajectory import joint_path_to_msg
-from door_contract.door_estimates import DoorEstimateHistory
 from door_contract.errors import ContractError
 from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
                                         declare_parameters, run_node)
-from door_contract.payloads import DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, decode, encode
+from door_contract.planner_inputs import PlannerInputs
+from door_contract.payloads import MotionRequest, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.topics import Topics
 from door_robot.errors import RobotModelError
 from door_robot.kinematics import RobotKinematics
@@ -51,14 +50,11 @@ class TrajectoryOptimizerNode(Node):
             pull_angle=p["pull_angle"]), starts=p["initial_guesses"], velocity_scale=p["velocity_scale"])
         self.lever_radius = p["lever_radius"]
         self.joint_positions: dict[str, float] | None = None
-        self.base_pose: np.ndarray | None = None
-        self.doors = DoorEstimateHistory()
         self.heartbeat = Heartbeat(self)
+        self.inputs = PlannerInputs(self, self.heartbeat)
         self.trajectory_pub = create_contract_publisher(self, Topics.MOTION_PROPOSAL)
         self.outcome_pub = create_contract_publisher(self, Topics.MOTION_OUTCOME)
         create_contract_subscription(self, Topics.JOINT_STATES, self._on_joint_states)
-        create_contract_subscription(self, Topics.ODOM, self._on_odom)
-        create_contract_subscription(self, Topics.DOOR_ESTIMATE, self._on_door)
         create_contract_subscription(self, Topics.MOTION_REQUEST, self._on_request)
         self.get_logger().info(f"ready: {p['robot_profile']}, default backend {p['backend']}")
 
@@ -69,18 +65,7 @@ class TrajectoryOptimizerNode(Node):
             self.joint_positions = None
             self.get_logger().warning(f"joint states rejected: {error}")
 
-    def _on_odom(self, msg: Odometry) -> None:
-        try:
-            self.base_pose = pose_to_matrix(msg.pose.pose)
-        except ContractError as error:
-            self.base_pose = None
-            self.get_logger().warning(f"odometry rejected: {error}")
 
-    def _on_door(self, msg: String) -> None:
-        try:
-            self.doors.add(decode(DoorEstimate, msg.data))
-        except ContractError as error:
-            self.get_logger().warning(f"door estimate rejected: {error}")
 
     def _on_request(self, msg: String) -> None:
         try:
@@ -115,11 +100,11 @@ class TrajectoryOptimizerNode(Node):
         except ValueError:
             raise PlanningRefused(f"unknown motion {request.motion!r}; known: "
                                   + ", ".join(m.value for m in Motion)) from None
-        estimate = self.doors.pick(request.door_stamp)
+        estimate = self.inputs.doors.pick(request.door_stamp)
         if estimate is None:
             raise PlanningRefused("no door estimate yet" if request.door_stamp < 0 else
                                   f"door estimate of stamp {request.door_stamp:.3f} s was not received")
-        if self.joint_positions is None or self.base_pose is None:
+        if self.joint_positions is None or self.inputs.base_pose is None:
             raise PlanningRefused("no valid joint states / odometry yet")
         backend = Backend(request.backend or self.parameters["backend"])
         body_q = self.kinematics.configuration(
@@ -127,7 +112,7 @@ class TrajectoryOptimizerNode(Node):
         hand = Side(estimate.hinge_side.grasp_hand(request.opening))
         side = hand.other if motion.uses_other_arm else hand
         chain = ArmChain(self.kinematics, side, body_q)
-        door = door_model_from_estimate(estimate, np.linalg.inv(self.base_pose),
+        door = door_model_from_estimate(estimate, np.linalg.inv(self.inputs.base_pose),
                                         push=request.opening == "push", lever_radius=self.lever_radius)
         setup = MotionSetup(chain, door, estimate.width, support_polygon(chain),
                             start_door_for(motion, request.door_angle, self.library.options))

@@ -12,7 +12,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from std_msgs.msg import String
 from visualization_msgs.msg import Marker, MarkerArray
@@ -20,12 +19,12 @@ from visualization_msgs.msg import Marker, MarkerArray
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.footsteps import Foot as ContractFoot
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
-from door_contract.converters.pose import pose_to_matrix, yaw_of
-from door_contract.door_estimates import DoorEstimateHistory
+from door_contract.converters.pose import yaw_of
 from door_contract.errors import ContractError, ParameterRangeError
 from door_contract.frames import Frame
 from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
                                         declare_parameters, run_node)
+from door_contract.planner_inputs import PlannerInputs
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.topics import Topics
 from door_robot.profile import load_profile
@@ -65,35 +64,18 @@ class FootstepPlannerNode(Node):
             self.options = planner_options(self.parameters["robot_profile"], self.parameters)
         except FootstepPlannerError as error:
             raise ParameterRangeError(f"footstep planner options: {error}") from None
-        self.base_pose: np.ndarray | None = None
-        self.doors = DoorEstimateHistory()
         self.passage_angle: float | None = None
         self.planned_stance: Stance | None = None  # where the last plan leaves the feet
         self.heartbeat = Heartbeat(self)
+        self.inputs = PlannerInputs(self, self.heartbeat)
         self.plan_pub = create_contract_publisher(self, Topics.FOOTSTEP_PROPOSAL)
         self.outcome_pub = create_contract_publisher(self, Topics.FOOTSTEP_OUTCOME)
         self.marker_pub = create_contract_publisher(self, Topics.FOOTSTEP_MARKERS)
-        create_contract_subscription(self, Topics.ODOM, self._on_odom)
-        create_contract_subscription(self, Topics.DOOR_ESTIMATE, self._on_door)
         create_contract_subscription(self, Topics.FOOTSTEP_REQUEST, self._on_request)
         self.get_logger().info(f"ready: {self.parameters['robot_profile']} steps ≤ {self.options.max_stride} m, "
                                f"heuristic weight {self.options.heuristic_weight}")
 
-    def _on_odom(self, msg: Odometry) -> None:
-        try:
-            self.base_pose = pose_to_matrix(msg.pose.pose)
-        except ContractError as error:
-            self.base_pose = None
-            self.get_logger().warning(f"odometry rejected: {error}")
-        self.heartbeat.values["odom"] = "" if self.base_pose is None else f"{msg.header.stamp.sec}.{msg.header.stamp.nanosec:09d}"
 
-    def _on_door(self, msg: String) -> None:
-        try:
-            self.doors.add(decode(DoorEstimate, msg.data))
-        except ContractError as error:
-            self.get_logger().warning(f"door estimate rejected: {error}")
-        latest = self.doors.latest
-        self.heartbeat.values["door"] = "" if latest is None else f"{latest.stamp:.3f}"
 
     def _on_request(self, msg: String) -> None:
         try:
@@ -128,15 +110,15 @@ class FootstepPlannerNode(Node):
                       "expansions": result.expansions})
 
     def _problem(self, request: FootstepRequest) -> tuple[Stance, Pose2D, World]:
-        if self.base_pose is None:
+        if self.inputs.base_pose is None:
             raise RequestRefused("no valid odometry yet")
-        estimate = self.doors.pick(request.door_stamp)
+        estimate = self.inputs.doors.pick(request.door_stamp)
         if estimate is None:
             raise RequestRefused("no door estimate yet" if request.door_stamp < 0 else
                                  f"door estimate of stamp {request.door_stamp:.3f} s was not received")
         if request.goal not in ("stand", "through"):
             raise RequestRefused(f"unknown goal {request.goal!r}; use 'stand' or 'through'")
-        body = Pose2D(float(self.base_pose[0, 3]), float(self.base_pose[1, 3]), yaw_of(self.base_pose))
+        body = Pose2D(float(self.inputs.base_pose[0, 3]), float(self.inputs.base_pose[1, 3]), yaw_of(self.inputs.base_pose))
         start = self._start_stance(body)
         door = self._door_geometry(request, estimate)
         if request.goal == "stand":

@@ -12,7 +12,6 @@ import argparse
 import sys
 from pathlib import Path
 
-import rclpy
 from rclpy.node import Node
 
 from door_bringup.bags.player import qos_for
