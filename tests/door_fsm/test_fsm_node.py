@@ -32,11 +32,18 @@ class Peer:
         create_contract_subscription(self.node, Topics.APPROVAL_REQUEST,
                                      lambda m: m.data and self.requests.append(m.data))
         self.reports = []
+        self.watching = []  # required nodes the supervisor reports having seen
         create_contract_subscription(self.node, Topics.TASK_REPORT,
                                      lambda m: self.reports.append(decode(TaskReport, m.data)))
-        self.node.create_subscription(DiagnosticArray, Topics.DIAGNOSTICS.name, lambda a: self.failures.extend(
-            kv.value for s in a.status if s.name == "fsm_supervisor" for kv in s.values
-            if kv.key == "failure" and kv.value != "-"), 10)
+        self.node.create_subscription(DiagnosticArray, Topics.DIAGNOSTICS.name, self._on_diagnostics, 10)
+
+    def _on_diagnostics(self, array):
+        for status in (s for s in array.status if s.name == "fsm_supervisor"):
+            values = {kv.key: kv.value for kv in status.values}
+            if values.get("failure", "-") != "-":
+                self.failures.append(values["failure"])
+            if "watching" in values:
+                self.watching.append(values["watching"])
 
     def _on_state(self, msg):
         self.states.append(msg.data)
@@ -108,7 +115,8 @@ def test_a_killed_node_fails_the_task(workspace, rclpy_context, tmp_path):
         env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
     try:
         assert peer.wait(lambda: peer.requests), log.read_text()
-        assert peer.wait(lambda: "door_detector" in peer.node.get_node_names())
+        # kill only once the supervisor itself has seen the node (its /diagnostics says so)
+        assert peer.wait(lambda: any("door_detector" in w.split(",") for w in peer.watching), 30.0), log.read_text()
         victim.kill()
         assert peer.wait(lambda: peer.states[-1] == "FAILED", 30.0), log.read_text()
         assert peer.wait(lambda: any("/door_detector is gone" in f for f in peer.failures), 10.0)

@@ -164,7 +164,10 @@ class FsmSupervisorNode(Node):
     def _check_nodes(self) -> None:
         present = set(self.get_node_names())
         required = set(self.parameters["required_nodes"])
-        self._seen_nodes |= present & required
+        if not (present & required) <= self._seen_nodes:
+            self._seen_nodes |= present & required
+            self.heartbeat.update(self.heartbeat.health, self.heartbeat.message,
+                                  watching=",".join(sorted(self._seen_nodes)))
         for name in sorted(self._seen_nodes - present):
             self._seen_nodes.discard(name)
             self._feed(ev.NodeLost(name))
