@@ -6,7 +6,7 @@ from sim_scenes import GRASP_STANCE, reach_handle, solve_ik, turned_grasp_target
 
 from door_contract.payloads import OutcomeStatus
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side
+from door_robot.profile import Side, load_profile
 from door_sim_bridge.execution import TrajectoryExecution
 from door_sim_bridge.world import DoorWorld, EventKind, WorldConfig
 from door_sim_bridge.world.transforms import translation
@@ -20,9 +20,16 @@ def kinematics():
         return RobotKinematics(world.profile)
 
 
+def manipulation_posture() -> tuple[tuple[str, float], ...]:
+    """The profile's nominal (half-sitting) arms instead of its walking posture: these tests
+    place the hand by IK from there, as they were tuned."""
+    profile = load_profile("talos")
+    return tuple((name, profile.nominal_posture[name]) for name in profile.walking_posture)
+
+
 @pytest.fixture
 def world():
-    with DoorWorld(WorldConfig(stance=GRASP_STANCE)) as sim:
+    with DoorWorld(WorldConfig(stance=GRASP_STANCE, posture_overrides=manipulation_posture())) as sim:
         yield sim
 
 

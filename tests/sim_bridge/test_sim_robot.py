@@ -30,11 +30,11 @@ def _pinocchio_tcp(world: DoorWorld, kinematics: RobotKinematics, side: Side) ->
     return world.base_pose() @ kinematics.frame_pose(q, kinematics.profile.tcp_frame(side))
 
 
-def test_starts_at_the_stance_in_the_nominal_posture(world):
+def test_starts_at_the_stance_in_the_walking_posture(world):
     base = world.base_pose()
     np.testing.assert_allclose(base, planar(-2.0, 0.35, 0.4, world.profile.base_height), atol=1e-6)
     positions = world.joint_positions()
-    for name, value in world.profile.nominal_posture.items():
+    for name, value in {**world.profile.nominal_posture, **world.profile.walking_posture}.items():
         assert positions[name] == pytest.approx(value, abs=1e-6)
     feet = world.foot_placements()
     for placement in feet.values():

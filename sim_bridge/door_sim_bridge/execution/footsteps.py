@@ -139,10 +139,10 @@ class FootstepExecution(Execution):
         self._to_pose = self.world.base_pose_for_feet(self._feet[Foot.LEFT], self._feet[Foot.RIGHT])
 
     def _command_now(self) -> None:
-        penetration = self.world.scene_penetration()
+        penetration, link = self.world.scene_contact()
         if penetration > self.world.config.execution.collision_depth:
             self._finish(OutcomeStatus.FAILURE, f"robot hit the wall or door frame during step "
-                                                f"{self._index} ({penetration:.3f} m deep)")
+                                                f"{self._index} ({link}, {penetration:.3f} m deep)")
             return
         slip = self._slip_since_start()
         if slip is not None:

@@ -110,10 +110,12 @@ class DoorWorld:
         self.robot.reset_joints(self._initial_posture())
 
     def _initial_posture(self) -> dict[str, float]:
-        """Zero (clipped into the limits), then the profile's nominal posture, the overrides, and
-        the head pitch on the joint that tilts the camera (unless overridden)."""
+        """Zero (clipped into the limits), then the profile's nominal posture with its walking
+        posture on top (the robot arrives walking), the overrides, and the head pitch on the
+        joint that tilts the camera (unless overridden)."""
         posture = {name: min(max(0.0, limit.lower), limit.upper) for name, limit in self.robot.limits.items()}
         posture.update(self.profile.nominal_posture)
+        posture.update(self.profile.walking_posture)
         overrides = dict(self.config.posture_overrides)
         if self._pitch_joint is not None and self._pitch_joint[0] not in overrides:
             name, sign = self._pitch_joint
@@ -229,8 +231,17 @@ class DoorWorld:
 
     def scene_penetration(self) -> float:
         """Deepest penetration (m, ≥ 0) of a robot link into the wall or door frame."""
+        return self.scene_contact()[0]
+
+    def scene_contact(self) -> tuple[float, str]:
+        """Deepest penetration (m, ≥ 0) into the wall or frame and the robot link that made it."""
         contacts = self._client.getContactPoints(bodyA=self.robot.body, bodyB=self.door.body, linkIndexB=-1)
-        return max((-contact[8] for contact in contacts), default=0.0)
+        if not contacts:
+            return 0.0, ""
+        deepest = min(contacts, key=lambda contact: contact[8])
+        link = deepest[3]
+        name = self._client.getJointInfo(self.robot.body, link)[12].decode() if link >= 0 else "base"
+        return max(-deepest[8], 0.0), name
 
     # ------------------------------------------------------------------ door
     def door_state(self) -> DoorState:

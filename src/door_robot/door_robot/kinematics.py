@@ -37,6 +37,7 @@ class RobotKinematics:
         self.upper_limits = np.array(self.model.upperPositionLimit)
         self.velocity_limits = np.array(self.model.velocityLimit)
         self.nominal_q = self.configuration(profile.nominal_posture)
+        self.walking_q = self.configuration(profile.walking_posture, base=self.nominal_q)
         self._check_profile_names()
 
     def _add_tcp_frame(self, name: str, parent: str, offset: Sequence[float]) -> None:

@@ -9,7 +9,7 @@ walking limits. Joint limits are read from the URDF itself (:mod:`door_robot.kin
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
 from typing import Any
@@ -64,6 +64,7 @@ class RobotProfile:
     feet: dict  # Side -> sole frame name
     nominal_posture: dict  # joint -> rad
     walking: WalkingLimits
+    walking_posture: dict = field(default_factory=dict)  # joint -> rad over the nominal posture
 
     def arm(self, side: Side) -> ArmChain:
         return self.arms[side]
@@ -129,4 +130,5 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         feet={Side(side): frame for side, frame in document["feet"].items()},
         nominal_posture=posture,
         walking=WalkingLimits(**{k: float(v) for k, v in document["walking"].items()}),
+        walking_posture={name: float(value) for name, value in (document.get("walking_posture") or {}).items()},
     )

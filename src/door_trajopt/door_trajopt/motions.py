@@ -352,11 +352,12 @@ def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
 
 
 def _ready(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
-    """The walking posture. Pull doors: the opening arm back to the nominal posture (the
-    other arm blocks the door). Push doors: the opened hand stays where it is, as a stop
-    the closer pushes the door against, and pushes the door open as the robot walks."""
-    nominal = setup.chain.chain_of(setup.chain.kinematics.nominal_q)
-    end = np.concatenate([start_chain if setup.door.push else nominal, setup.start_door])
+    """The walking posture. Pull doors: the opening arm back to the profile's walking
+    posture (the other arm blocks the door). Push doors: the opened hand stays where it
+    is, as a stop the closer pushes the door against, and pushes the door open as the
+    robot walks."""
+    walking = setup.chain.chain_of(setup.chain.kinematics.walking_q)
+    end = np.concatenate([start_chain if setup.door.push else walking, setup.start_door])
     problem = _problem(setup, start_chain, options, (False, False), [], end=end)
     return MotionProblem(problem, problem.linear_interpolation(end), setup.chain)
 
