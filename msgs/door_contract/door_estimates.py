@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from collections import OrderedDict
 
-from door_contract.payloads import DoorEstimate
+from door_contract.payloads import DoorEstimate, decode
 
 
 class DoorEstimateHistory:
@@ -23,8 +23,11 @@ class DoorEstimateHistory:
     def latest(self) -> DoorEstimate | None:
         return next(reversed(self._by_stamp.values()), None)
 
-    def pick(self, stamp: float) -> DoorEstimate | None:
-        """The estimate with ``stamp`` (within 1 µs); the latest one when ``stamp`` < 0."""
+    def pick(self, stamp: float, carried: str = "") -> DoorEstimate | None:
+        """The estimate a request names: the one it carries (JSON), else the one with
+        ``stamp`` (within 1 µs), else — for ``stamp`` < 0 — the latest one."""
+        if carried:
+            return decode(DoorEstimate, carried)
         if stamp < 0:
             return self.latest
         return next((e for s, e in self._by_stamp.items() if abs(s - stamp) < 1e-6), None)

@@ -106,6 +106,7 @@ class FootstepRequest:
     opening: str  # "push" | "pull"
     door_angle: float = 0.0
     door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
+    door: str = ""  # the approved DoorEstimate itself (JSON), so a late-joining planner has it
 
 
 @dataclasses.dataclass(frozen=True)
@@ -118,6 +119,7 @@ class MotionRequest:
     backend: str = ""  # "sqp" | "chomp"; empty = the node's parameter
     door_angle: float = 0.0
     door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
+    door: str = ""  # the approved DoorEstimate itself (JSON), so a late-joining planner has it
 
 
 @dataclasses.dataclass(frozen=True)

@@ -8,10 +8,11 @@ a planner has its inputs instead of racing them.
 from __future__ import annotations
 
 import numpy as np
-from nav_msgs.msg import Odometry
+from nav_msgs.msg import Odometry, Path
 from rclpy.node import Node
 from std_msgs.msg import String
 
+from door_contract.converters.footsteps import FootPlacement, path_to_footsteps
 from door_contract.converters.pose import pose_to_matrix
 from door_contract.door_estimates import DoorEstimateHistory
 from door_contract.errors import ContractError
@@ -25,7 +26,9 @@ class PlannerInputs:
         self._node, self._heartbeat = node, heartbeat
         self.base_pose: np.ndarray | None = None  # base in odom, 4×4
         self.doors = DoorEstimateHistory()
+        self.feet: list[FootPlacement] | None = None  # [left, right] where the soles stand
         create_contract_subscription(node, Topics.ODOM, self._on_odom)
+        create_contract_subscription(node, Topics.FOOT_POSES, self._on_feet)
         create_contract_subscription(node, Topics.DOOR_ESTIMATE, self._on_door)
 
     def _on_odom(self, msg: Odometry) -> None:
@@ -36,6 +39,14 @@ class PlannerInputs:
             self._node.get_logger().warning(f"odometry rejected: {error}")
         stamp = f"{msg.header.stamp.sec}.{msg.header.stamp.nanosec:09d}"
         self._heartbeat.values["odom"] = "" if self.base_pose is None else stamp
+
+    def _on_feet(self, msg: Path) -> None:
+        try:
+            feet = path_to_footsteps(msg)
+        except ContractError as error:
+            self._node.get_logger().warning(f"foot poses rejected: {error}")
+            return
+        self.feet = feet if len(feet) == 2 else None
 
     def _on_door(self, msg: String) -> None:
         try:

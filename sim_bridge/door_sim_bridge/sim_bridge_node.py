@@ -21,7 +21,7 @@ from std_srvs.srv import SetBool
 from trajectory_msgs.msg import JointTrajectory
 
 from door_contract.converters.camera_info import intrinsics_to_camera_info
-from door_contract.converters.footsteps import path_to_footsteps
+from door_contract.converters.footsteps import Foot, footsteps_to_path, path_to_footsteps
 from door_contract.converters.image import array_to_image
 from door_contract.converters.joint_state import positions_to_joint_state
 from door_contract.converters.pose import matrix_to_pose, matrix_to_pose_stamped
@@ -96,7 +96,7 @@ class SimBridgeNode(Node):
         pub = lambda topic: create_contract_publisher(self, topic)
         self.publishers_by_name = {t: pub(getattr(Topics, t)) for t in (
             "CLOCK", "JOINT_STATES", "ODOM", "COLOR_IMAGE", "COLOR_INFO", "DEPTH_IMAGE", "DEPTH_INFO",
-            "CAMERA_POSE", "DOOR_JOINT_STATES", "EXECUTION_OUTCOME")}
+            "CAMERA_POSE", "DOOR_JOINT_STATES", "EXECUTION_OUTCOME", "FOOT_POSES")}
         create_contract_subscription(self, Topics.ARM_TRAJECTORY, self._on_trajectory)
         create_contract_subscription(self, Topics.FOOTSTEP_PLAN, self._on_footsteps)
         for side, spec in ((Side.LEFT, Services.LEFT_GRASP), (Side.RIGHT, Services.RIGHT_GRASP)):
@@ -182,6 +182,8 @@ class SimBridgeNode(Node):
             odom.twist.twist.linear.x, odom.twist.twist.linear.y, odom.twist.twist.linear.z = (float(v) for v in velocity)
         self.previous_base = (now, base)
         self.publishers_by_name["ODOM"].publish(odom)
+        feet = self.world.foot_placements()
+        self.publishers_by_name["FOOT_POSES"].publish(footsteps_to_path([feet[Foot.LEFT], feet[Foot.RIGHT]], now))
         door = self.world.door_state()
         self.publishers_by_name["DOOR_JOINT_STATES"].publish(positions_to_joint_state(
             {HINGE_JOINT: door.hinge_angle, HANDLE_JOINT: door.handle_angle}, stamp=now,

@@ -205,18 +205,22 @@ class FsmSupervisorNode(Node):
 
     def _do_RequestFootsteps(self, action: act.RequestFootsteps) -> None:
         request = FootstepRequest(action.request_id, action.goal, self.parameters["opening"], self.door_angle,
-                                  self._approved_door_stamp())
+                                  self._approved_door_stamp(), self._approved_door_json())
         self.footstep_request_pub.publish(String(data=encode(request)))
 
     def _do_RequestMotion(self, action: act.RequestMotion) -> None:
         request = MotionRequest(action.request_id, action.motion, self.parameters["opening"],
-                                self.parameters["backend"], self.door_angle, self._approved_door_stamp())
+                                self.parameters["backend"], self.door_angle, self._approved_door_stamp(),
+                                self._approved_door_json())
         self.motion_request_pub.publish(String(data=encode(request)))
 
     def _approved_door_stamp(self) -> float:
         """The stamp of the door estimate DETECT_DOOR accepted: later estimates (seen up close,
         while walking) do not silently replace what the operator approved."""
         return self.approved_door.stamp if self.approved_door is not None else -1.0
+
+    def _approved_door_json(self) -> str:
+        return encode(self.approved_door) if self.approved_door is not None else ""
 
     def _do_CallGrasp(self, action: act.CallGrasp) -> None:
         door = self.approved_door or self.door

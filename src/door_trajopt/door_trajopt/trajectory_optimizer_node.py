@@ -100,7 +100,7 @@ class TrajectoryOptimizerNode(Node):
         except ValueError:
             raise PlanningRefused(f"unknown motion {request.motion!r}; known: "
                                   + ", ".join(m.value for m in Motion)) from None
-        estimate = self.inputs.doors.pick(request.door_stamp)
+        estimate = self.inputs.doors.pick(request.door_stamp, request.door)
         if estimate is None:
             raise PlanningRefused("no door estimate yet" if request.door_stamp < 0 else
                                   f"door estimate of stamp {request.door_stamp:.3f} s was not received")

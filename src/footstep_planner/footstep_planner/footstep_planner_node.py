@@ -31,7 +31,7 @@ from door_robot.profile import load_profile
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide
 from footstep_planner.errors import FootstepPlannerError
-from footstep_planner.footstep import Foot, Pose2D, Stance
+from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
 from footstep_planner.goals import replan_needed, stand_pose_for_opening, through_door_pose
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import NODE_NAME, PLANNER_PARAMETERS
@@ -43,11 +43,15 @@ class RequestRefused(Exception):
     pass
 
 
+STEP_LIMIT_MARGIN = 0.95  # plan within 95 % of the robot's step limits: the robot checks its own
+
+
 def planner_options(profile_name: str, parameters: dict) -> FootstepPlannerOptions:
     """Planner options from the robot profile's walking limits and the node's parameters."""
     walking = load_profile(profile_name).walking
     return FootstepPlannerOptions(
-        max_stride=walking.max_stride, max_side_step=walking.max_side_step, max_turn=walking.max_turn,
+        max_stride=walking.max_stride * STEP_LIMIT_MARGIN, max_side_step=walking.max_side_step * STEP_LIMIT_MARGIN,
+        max_turn=walking.max_turn * STEP_LIMIT_MARGIN,
         nominal_foot_separation=walking.foot_separation,
         min_foot_separation=min(0.16, walking.foot_separation * 0.9),
         foot_length=walking.foot_length, foot_width=walking.foot_width,
@@ -112,7 +116,7 @@ class FootstepPlannerNode(Node):
     def _problem(self, request: FootstepRequest) -> tuple[Stance, Pose2D, World]:
         if self.inputs.base_pose is None:
             raise RequestRefused("no valid odometry yet")
-        estimate = self.inputs.doors.pick(request.door_stamp)
+        estimate = self.inputs.doors.pick(request.door_stamp, request.door)
         if estimate is None:
             raise RequestRefused("no door estimate yet" if request.door_stamp < 0 else
                                  f"door estimate of stamp {request.door_stamp:.3f} s was not received")
@@ -135,11 +139,13 @@ class FootstepPlannerNode(Node):
         return start, through_door_pose(door, self.parameters["beyond_door"]), World.from_door(door)
 
     def _start_stance(self, body: Pose2D) -> Stance:
-        """The feet: where the last plan left them if the base stands at that stance's
-        midpoint (the plan was walked), else the nominal stance around the base.
-
-        There is no foot-pose topic (tf2 is not on PyPI); the base is the feet's midpoint.
-        """
+        """The feet: measured (/feet) when the robot reports them; else where the last plan
+        left them if the base stands at that stance's midpoint (the plan was walked); else
+        the nominal stance around the base."""
+        feet = self.inputs.feet
+        if feet is not None:
+            left, right = feet
+            return Stance(Footstep(left.x, left.y, left.yaw, Foot.LEFT), Footstep(right.x, right.y, right.yaw, Foot.RIGHT))
         planned = self.planned_stance
         if planned is not None:
             middle = planned.body_pose
