@@ -13,8 +13,8 @@ from door_contract.converters.camera_info import (CameraIntrinsics, camera_info_
                                                   check_matches_image, intrinsics_to_camera_info)
 from door_contract.converters.footsteps import Foot, FootPlacement, footsteps_to_path, path_to_footsteps
 from door_contract.converters.joint_state import joint_state_to_positions, positions_to_joint_state
-from door_contract.converters.pose import (matrix_to_pose_stamped, planar_pose, pose_stamped_to_matrix,
-                                           pose_to_matrix)
+from door_contract.converters.pose import matrix_to_pose_stamped, pose_stamped_to_matrix, pose_to_matrix
+from door_contract.geometry import planar_pose
 from door_contract.converters.trajectory import JointPath, joint_path_to_msg, msg_to_joint_path
 from door_contract.errors import NonFiniteError, ShapeError
 

@@ -10,7 +10,7 @@ from door_contract.converters.trajectory import JointPath
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, decode, encode
 from door_sim_bridge.execution import ExecutionPhase, FootstepExecution, TrajectoryExecution
 from door_sim_bridge.world import DoorWorld, StanceConfig
-from door_sim_bridge.world.transforms import yaw_of
+from door_contract.geometry import yaw_of
 
 ARM = ("arm_left_1_joint", "arm_left_2_joint", "arm_left_4_joint", "torso_1_joint")
 

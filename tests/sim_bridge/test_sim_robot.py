@@ -8,7 +8,7 @@ from door_robot.kinematics import RobotKinematics
 from door_robot.profile import Side
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
-from door_sim_bridge.world.transforms import planar
+from door_contract.geometry import planar_pose
 
 STANCE = StanceConfig(distance=2.0, lateral_offset=0.35, yaw=0.4)
 
@@ -32,7 +32,7 @@ def _pinocchio_tcp(world: DoorWorld, kinematics: RobotKinematics, side: Side) ->
 
 def test_starts_at_the_stance_in_the_walking_posture(world):
     base = world.base_pose()
-    np.testing.assert_allclose(base, planar(-2.0, 0.35, 0.4, world.profile.base_height), atol=1e-6)
+    np.testing.assert_allclose(base, planar_pose(-2.0, 0.35, 0.4, world.profile.base_height), atol=1e-6)
     positions = world.joint_positions()
     for name, value in {**world.profile.nominal_posture, **world.profile.walking_posture}.items():
         assert positions[name] == pytest.approx(value, abs=1e-6)
@@ -57,7 +57,7 @@ def test_tcp_pose_agrees_with_pinocchio(world, kinematics, seed):
     limits = world.joint_limits()
     posture = {name: rng.uniform(limits[name].lower, limits[name].upper) for name in arm_joints}
     world.robot.reset_joints(posture)
-    world.set_base_pose(planar(-1.0 + seed, 0.2 * seed, 0.3 * seed - 0.5, world.profile.base_height))
+    world.set_base_pose(planar_pose(-1.0 + seed, 0.2 * seed, 0.3 * seed - 0.5, world.profile.base_height))
     for side in Side:
         ours, reference = world.tcp_pose(side), _pinocchio_tcp(world, kinematics, side)
         assert np.linalg.norm(ours[:3, 3] - reference[:3, 3]) < 1e-3
@@ -65,7 +65,7 @@ def test_tcp_pose_agrees_with_pinocchio(world, kinematics, seed):
 
 
 def test_base_pose_round_trips(world):
-    target = planar(0.7, -1.2, 2.5, world.profile.base_height)
+    target = planar_pose(0.7, -1.2, 2.5, world.profile.base_height)
     world.set_base_pose(target)
     np.testing.assert_allclose(world.base_pose(), target, atol=1e-9)
     with pytest.raises(SimulationError):

@@ -48,16 +48,3 @@ def matrix_to_pose_stamped(transform: np.ndarray, frame_id: str,
         msg.header.stamp = to_time_msg(stamp)
     msg.pose = matrix_to_pose(transform)
     return msg
-
-
-def planar_pose(x: float, y: float, yaw: float, z: float = 0.0) -> np.ndarray:
-    """4×4 transform of a pose in the ground plane (rotation about z by ``yaw``)."""
-    transform = np.eye(4)
-    c, s = np.cos(yaw), np.sin(yaw)
-    transform[:2, :2] = [[c, -s], [s, c]]
-    transform[:3, 3] = (x, y, z)
-    return transform
-
-
-def yaw_of(transform: np.ndarray) -> float:
-    return float(np.arctan2(transform[1, 0], transform[0, 0]))

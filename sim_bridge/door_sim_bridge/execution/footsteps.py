@@ -30,7 +30,7 @@ from door_contract.converters.footsteps import Foot, FootPlacement, foot_of_inde
 from door_contract.payloads import OutcomeStatus
 from door_robot.profile import WalkingLimits
 from door_sim_bridge.execution.base import Execution
-from door_sim_bridge.world.transforms import planar, yaw_of
+from door_contract.geometry import planar_pose, yaw_of
 from door_sim_bridge.world.world import DoorWorld
 
 LIMIT_TOLERANCE = 0.005  # m or rad: planners round to their grids; a few mm more is still a safe step
@@ -106,7 +106,7 @@ def blend_poses(start: np.ndarray, end: np.ndarray, weight: float) -> np.ndarray
     """Planar blend of two base poses: position linearly, heading along the shorter arc."""
     position = (1.0 - weight) * start[:3, 3] + weight * end[:3, 3]
     heading = yaw_of(start) + weight * wrap_angle(yaw_of(end) - yaw_of(start))
-    return planar(position[0], position[1], heading, position[2])
+    return planar_pose(position[0], position[1], heading, position[2])
 
 
 class FootstepExecution(Execution):

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -27,20 +26,6 @@ def position_quaternion(transform: np.ndarray) -> tuple[list[float], list[float]
     """PyBullet (position, x y z w quaternion) of a 4×4 transform."""
     matrix = np.asarray(transform, dtype=float)
     return matrix[:3, 3].tolist(), Rotation.from_matrix(matrix[:3, :3]).as_quat().tolist()
-
-
-def planar(x: float, y: float, yaw: float, z: float = 0.0) -> np.ndarray:
-    """4×4 transform rotated by ``yaw`` about z and translated to (x, y, z)."""
-    transform = np.eye(4)
-    c, s = math.cos(yaw), math.sin(yaw)
-    transform[:2, :2] = [[c, -s], [s, c]]
-    transform[:3, 3] = (x, y, z)
-    return transform
-
-
-def yaw_of(transform: np.ndarray) -> float:
-    """Heading of a transform's x axis in the ground plane (rad)."""
-    return math.atan2(transform[1, 0], transform[0, 0])
 
 
 def invert(transform: np.ndarray) -> np.ndarray:

@@ -33,7 +33,8 @@ from door_sim_bridge.world.config import StanceConfig, WorldConfig
 from door_sim_bridge.world.door import DoorGroundTruth, DoorPart, DoorState, LatchEvent, SimDoor
 from door_sim_bridge.world.grasp import GraspController, GraspResult
 from door_sim_bridge.world.robot import JointLimit, JointStates, SimRobot
-from door_sim_bridge.world.transforms import invert, is_rigid, planar, yaw_of
+from door_contract.geometry import planar_pose, yaw_of
+from door_sim_bridge.world.transforms import invert, is_rigid
 
 
 class EventKind(str, Enum):
@@ -105,7 +106,7 @@ class DoorWorld:
         self._client.setAdditionalSearchPath(str(cmeel_share_dir()))
 
     def _place_robot(self, stance: StanceConfig) -> None:
-        self.robot.set_base_pose(planar(-stance.distance, stance.lateral_offset, stance.yaw,
+        self.robot.set_base_pose(planar_pose(-stance.distance, stance.lateral_offset, stance.yaw,
                                         self.profile.base_height))
         self.robot.reset_joints(self._initial_posture())
 
@@ -328,4 +329,4 @@ class DoorWorld:
 def stance_midpoint(left: FootPlacement, right: FootPlacement) -> np.ndarray:
     """Planar pose halfway between two soles, with their mean heading (circular mean)."""
     heading = math.atan2(math.sin(left.yaw) + math.sin(right.yaw), math.cos(left.yaw) + math.cos(right.yaw))
-    return planar((left.x + right.x) / 2.0, (left.y + right.y) / 2.0, heading)
+    return planar_pose((left.x + right.x) / 2.0, (left.y + right.y) / 2.0, heading)

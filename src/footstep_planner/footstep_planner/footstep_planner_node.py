@@ -19,7 +19,7 @@ from visualization_msgs.msg import Marker, MarkerArray
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.footsteps import Foot as ContractFoot
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
-from door_contract.converters.pose import yaw_of
+from door_contract.geometry import yaw_of
 from door_contract.errors import ContractError, ParameterRangeError
 from door_contract.frames import Frame
 from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
