@@ -31,7 +31,7 @@ from door_contract.frames import Frame
 from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
                                         declare_parameters, run_node)
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, encode
-from door_contract.stamps import to_time_msg
+from door_contract.stamps import stamp_ns, to_time_msg
 from door_contract.topics import Services, Topics
 from door_robot.profile import Side
 from door_sim_bridge.errors import SimulationError
@@ -104,7 +104,7 @@ class SimBridgeNode(Node):
 
     # ------------------------------------------------------------------ commands
     def _on_trajectory(self, msg: JointTrajectory) -> None:
-        request_id = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+        request_id = stamp_ns(msg.header.stamp)
         try:
             path = msg_to_joint_path(msg)
         except ContractError as error:
@@ -113,7 +113,7 @@ class SimBridgeNode(Node):
         self._start(TrajectoryExecution.from_joint_path(self.world, path), ExecutionKind.TRAJECTORY, request_id)
 
     def _on_footsteps(self, msg: Path) -> None:
-        request_id = msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
+        request_id = stamp_ns(msg.header.stamp)
         try:
             steps = path_to_footsteps(msg)
         except ContractError as error:

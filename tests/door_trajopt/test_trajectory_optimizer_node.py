@@ -16,6 +16,7 @@ from door_contract.converters.trajectory import msg_to_joint_path
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import (DoorEstimate, HingeSide, MotionRequest, OutcomeStatus, PlanningOutcome,
                                     decode, encode)
+from door_contract.stamps import stamp_ns
 from door_contract.topics import Topics
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
@@ -98,7 +99,7 @@ def test_approach_is_planned_within_limits(robot):
     assert outcome.status is OutcomeStatus.SUCCESS, outcome.reason
     assert outcome.details["max_violation"] < 1e-6 and outcome.details["backend"] == "chomp"
     assert spin_until(robot.executor, lambda: any(
-        t.header.stamp.sec * 10**9 + t.header.stamp.nanosec == outcome.details["stamp_ns"]
+        stamp_ns(t.header.stamp) == outcome.details["stamp_ns"]
         for t in robot.trajectories), 10.0)
     path = msg_to_joint_path(robot.trajectories[-1])
     assert path.joint_names[:2] == ("torso_1_joint", "torso_2_joint") and "arm_right_4_joint" in path.joint_names

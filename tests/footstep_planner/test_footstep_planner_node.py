@@ -16,6 +16,7 @@ from door_contract.converters.footsteps import Foot, path_to_footsteps
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import (DoorEstimate, FootstepRequest, HingeSide, OutcomeStatus, PlanningOutcome,
                                     decode, encode)
+from door_contract.stamps import stamp_ns
 from door_contract.topics import Topics
 from ros_helpers import executor_for, spin_until
 
@@ -86,7 +87,7 @@ def test_stand_pose_plan_alternates_feet_and_ends_in_front_of_the_door(client):
     outcome = client.request(1, "stand")
     assert outcome.status is OutcomeStatus.SUCCESS, outcome.reason
     assert spin_until(client.executor, lambda: any(
-        p.header.stamp.sec * 10**9 + p.header.stamp.nanosec == outcome.details["stamp_ns"] for p in client.plans), 10.0)
+        stamp_ns(p.header.stamp) == outcome.details["stamp_ns"] for p in client.plans), 10.0)
     steps = path_to_footsteps(client.plans[-1])
     assert [s.foot for s in steps] == [Foot.LEFT if i % 2 == 0 else Foot.RIGHT for i in range(len(steps))]
     last_two = steps[-2:]

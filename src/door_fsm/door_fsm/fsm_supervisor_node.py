@@ -23,6 +23,7 @@ from door_contract.node_support import (Heartbeat, create_contract_publisher, cr
                                         declare_parameters, run_node)
 from door_contract.payloads import (DoorEstimate, ExecutionOutcome, FootstepRequest, MotionRequest,
                                     OutcomeStatus, PlanningOutcome, TaskReport, decode, encode)
+from door_contract.stamps import stamp_ns
 from door_contract.topics import Services, Topics
 from door_fsm import actions as act
 from door_fsm import events as ev
@@ -97,7 +98,7 @@ class FsmSupervisorNode(Node):
             self._feed(ev.ProposalReady(request, door_summary(estimate)))
 
     def _on_proposal_message(self, msg: Path | JointTrajectory) -> None:
-        stamp = _stamp_ns(msg)
+        stamp = stamp_ns(msg.header.stamp)
         self._proposals[stamp] = msg
         outcome = self._pending.pop(stamp, None)
         if outcome is not None:
@@ -237,12 +238,8 @@ class FsmSupervisorNode(Node):
     def _do_Execute(self, action: act.Execute) -> None:
         message = self._approved.pop(action.request_id)
         message.header.stamp = self.get_clock().now().to_msg()
-        self._executing[_stamp_ns(message)] = action.request_id
+        self._executing[stamp_ns(message.header.stamp)] = action.request_id
         (self.footsteps_pub if isinstance(message, Path) else self.trajectory_pub).publish(message)
-
-
-def _stamp_ns(msg: Path | JointTrajectory) -> int:
-    return msg.header.stamp.sec * 1_000_000_000 + msg.header.stamp.nanosec
 
 
 def main(args: list[str] | None = None) -> int:

@@ -40,7 +40,6 @@ The run stops, as in the seed, when the objective stops decreasing while
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 
 import numpy as np
@@ -49,8 +48,8 @@ import scipy.sparse as sp
 from scipy.linalg import LinAlgError, cho_factor, cho_solve
 
 from door_trajopt.banded import KroneckerBandedCholesky, LowRankUpdatedMetric, MetricSolver
-from door_trajopt.constraints import NonFiniteValueError
 from door_trajopt.evaluation import (
+    guarded_solve,
     PointModel,
     PointValues,
     ProblemEvaluator,
@@ -58,7 +57,7 @@ from door_trajopt.evaluation import (
     build_result,
 )
 from door_trajopt.problem import FloatArray, TrajectoryProblem
-from door_trajopt.result import OptimizationResult, invalid_guess_reason, invalid_input_result
+from door_trajopt.result import OptimizationResult
 from door_trajopt.validation import require_in_range, require_int_at_least
 
 IntArray = npt.NDArray[np.int64]
@@ -196,14 +195,7 @@ class ChompSolver:
         Never raises for a bad guess or NaN/inf callback values: those give
         ``Outcome.INVALID_INPUT`` with the reason in ``message``.
         """
-        started = time.perf_counter()
-        reason = invalid_guess_reason(self._evaluator.problem, initial_guess)
-        if reason is not None:
-            return invalid_input_result(initial_guess, reason, time.perf_counter() - started)
-        try:
-            return self._run(np.asarray(initial_guess, dtype=np.float64), started)
-        except NonFiniteValueError as error:
-            return invalid_input_result(initial_guess, str(error), time.perf_counter() - started)
+        return guarded_solve(self._evaluator.problem, initial_guess, self._run)
 
     def _run(self, guess: FloatArray, started: float) -> OptimizationResult:
         evaluator, options = self._evaluator, self._options

@@ -14,16 +14,17 @@ inside the joint-limit box.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
 import scipy.sparse as sp
 
-from door_trajopt.constraints import ConstraintStack, Violation, worst_violation
+from door_trajopt.constraints import ConstraintStack, NonFiniteValueError, Violation, worst_violation
 from door_trajopt.objective import Objective
 from door_trajopt.problem import ConstraintKind, FloatArray, TrajectoryProblem
-from door_trajopt.result import OptimizationResult, Outcome
+from door_trajopt.result import OptimizationResult, Outcome, invalid_guess_reason, invalid_input_result
 
 
 @dataclass(frozen=True)
@@ -159,3 +160,20 @@ def build_result(
         solve_time_s=time.perf_counter() - summary.started_at,
         message=summary.message,
     )
+
+
+def guarded_solve(problem: TrajectoryProblem, initial_guess: FloatArray,
+                  run: Callable[[FloatArray, float], OptimizationResult]) -> OptimizationResult:
+    """What both backends' ``solve`` share: check the guess, then ``run(guess, started)``.
+
+    Never raises for a bad guess or NaN/inf callback values: those give
+    ``Outcome.INVALID_INPUT`` with the reason in ``message``.
+    """
+    started = time.perf_counter()
+    reason = invalid_guess_reason(problem, initial_guess)
+    if reason is not None:
+        return invalid_input_result(initial_guess, reason, time.perf_counter() - started)
+    try:
+        return run(np.asarray(initial_guess, dtype=np.float64), started)
+    except NonFiniteValueError as error:
+        return invalid_input_result(initial_guess, str(error), time.perf_counter() - started)

@@ -43,7 +43,6 @@ with a ``stalled: ...`` message instead of passing silently as converged.
 from __future__ import annotations
 
 import enum
-import time
 from dataclasses import dataclass, replace
 from types import SimpleNamespace
 
@@ -52,8 +51,8 @@ import osqp
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from door_trajopt.constraints import NonFiniteValueError
 from door_trajopt.evaluation import (
+    guarded_solve,
     PointModel,
     PointValues,
     ProblemEvaluator,
@@ -62,7 +61,7 @@ from door_trajopt.evaluation import (
 )
 from door_trajopt.problem import FloatArray, TrajectoryProblem, TrajoptError
 from door_trajopt.qp_layout import QpLayout
-from door_trajopt.result import OptimizationResult, invalid_guess_reason, invalid_input_result
+from door_trajopt.result import OptimizationResult
 from door_trajopt.validation import require_in_range, require_int_at_least
 
 SOLVED_STATUSES = (
@@ -313,14 +312,7 @@ class SqpSolver:
         Never raises for a bad guess or NaN/inf callback values: those give
         ``Outcome.INVALID_INPUT`` with the reason in ``message``.
         """
-        started = time.perf_counter()
-        reason = invalid_guess_reason(self._evaluator.problem, initial_guess)
-        if reason is not None:
-            return invalid_input_result(initial_guess, reason, time.perf_counter() - started)
-        try:
-            return self._run(np.asarray(initial_guess, dtype=np.float64), started)
-        except NonFiniteValueError as error:
-            return invalid_input_result(initial_guess, str(error), time.perf_counter() - started)
+        return guarded_solve(self._evaluator.problem, initial_guess, self._run)
 
     def _run(self, guess: FloatArray, started: float) -> OptimizationResult:
         evaluator, options = self._evaluator, self._options

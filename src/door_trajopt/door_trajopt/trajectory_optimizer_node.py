@@ -23,6 +23,7 @@ from door_contract.errors import ContractError
 from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
                                         declare_parameters, run_node)
 from door_contract.planner_inputs import PlannerInputs
+from door_contract.stamps import stamp_ns
 from door_contract.payloads import MotionRequest, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.topics import Topics
 from door_robot.errors import RobotModelError
@@ -91,8 +92,8 @@ class TrajectoryOptimizerNode(Node):
         trajectory = joint_path_to_msg(plan.path)
         trajectory.header.stamp = self.get_clock().now().to_msg()
         self.trajectory_pub.publish(trajectory)
-        stamp_ns = trajectory.header.stamp.sec * 1_000_000_000 + trajectory.header.stamp.nanosec
-        self._answer(request, OutcomeStatus.SUCCESS, "", plan, stamp_ns=stamp_ns)
+        stamp = stamp_ns(trajectory.header.stamp)
+        self._answer(request, OutcomeStatus.SUCCESS, "", plan, proposal_stamp_ns=stamp)
 
     def _plan(self, request: MotionRequest) -> MotionPlan:
         try:
@@ -120,8 +121,8 @@ class TrajectoryOptimizerNode(Node):
         return self.library.plan(motion, setup, chain.chain_of(body_q), backend)
 
     def _answer(self, request: MotionRequest, status: OutcomeStatus, reason: str,
-                plan: MotionPlan | None = None, stamp_ns: int = -1) -> None:
-        details = {"stamp_ns": stamp_ns}
+                plan: MotionPlan | None = None, proposal_stamp_ns: int = -1) -> None:
+        details = {"stamp_ns": proposal_stamp_ns}
         if plan is not None:
             result = plan.result
             details.update(cost=round(result.cost, 6), max_violation=float(f"{result.max_violation:.3g}"),

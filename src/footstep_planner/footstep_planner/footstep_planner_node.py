@@ -25,6 +25,7 @@ from door_contract.frames import Frame
 from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
                                         declare_parameters, run_node)
 from door_contract.planner_inputs import PlannerInputs
+from door_contract.stamps import stamp_ns
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.topics import Topics
 from door_robot.profile import load_profile
@@ -107,10 +108,9 @@ class FootstepPlannerNode(Node):
         path.header.stamp = self.get_clock().now().to_msg()
         self.plan_pub.publish(path)
         self.marker_pub.publish(footstep_markers(placements, self.options))
-        stamp_ns = path.header.stamp.sec * 1_000_000_000 + path.header.stamp.nanosec
         length = float(np.hypot(goal.x - start.left.x / 2 - start.right.x / 2, goal.y - start.left.y / 2 - start.right.y / 2))
         self._answer(request, OutcomeStatus.SUCCESS, "", result.planning_time,
-                     {"stamp_ns": stamp_ns, "steps": len(result.plan.steps), "length_m": round(length, 3),
+                     {"stamp_ns": stamp_ns(path.header.stamp), "steps": len(result.plan.steps), "length_m": round(length, 3),
                       "expansions": result.expansions})
 
     def _problem(self, request: FootstepRequest) -> tuple[Stance, Pose2D, World]:
