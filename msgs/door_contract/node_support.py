@@ -5,13 +5,15 @@ This is the only module of the contract that imports rclpy at module level.
 
 from __future__ import annotations
 
+import signal
 from collections.abc import Callable, Iterable
 
 import rclpy
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
 from rclpy.clock import Clock, ClockType
-from rclpy.executors import ExternalShutdownException
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.node import Node
+from rclpy.signals import SignalHandlerOptions
 
 from door_contract.converters.diagnostics import Health, diagnostic_array
 from door_contract.errors import ParameterRangeError
@@ -57,30 +59,57 @@ def declare_parameters(node: Node, specs: Iterable[ParameterSpec]) -> dict[str, 
     return values
 
 
-def run_node(node_factory: Callable[[], Node], args: list[str] | None = None) -> int:
+class StopRequest:
+    """SIGINT/SIGTERM handler: the first signal asks the spin loop to stop between callbacks.
+
+    rclpy's own handler shuts the context down at once, which races with a callback taking
+    its message (rclpy then raises from inside ``take_message``) and once left a node hung
+    in shutdown. Stopping between callbacks avoids both. A second signal interrupts a long
+    callback (a plan with a 10 s budget) with :class:`KeyboardInterrupt`.
+    """
+
+    def __init__(self) -> None:
+        self.signal_name: str | None = None
+
+    def __call__(self, signum: int, _frame) -> None:
+        if self.signal_name is not None:
+            raise KeyboardInterrupt
+        self.signal_name = signal.Signals(signum).name
+
+    @property
+    def requested(self) -> bool:
+        return self.signal_name is not None
+
+
+def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
+             poll_period_s: float = 0.1) -> int:
     """The canonical rclpy main: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
 
     Returns the process exit code: 0 after a clean shutdown, 2 when a parameter is invalid.
     """
-    rclpy.init(args=args)
+    rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
+    stop = StopRequest()
+    previous = {sig: signal.signal(sig, stop) for sig in (signal.SIGINT, signal.SIGTERM)}
+    executor = SingleThreadedExecutor()
     node = None
     try:
         node = node_factory()
-        rclpy.spin(node)
+        executor.add_node(node)
+        while not stop.requested and rclpy.ok():
+            executor.spin_once(timeout_sec=poll_period_s)
+        node.get_logger().info(f"{stop.signal_name or 'context shut down'}: stopping")
     except ParameterRangeError as error:
         rclpy.logging.get_logger("door_task").fatal(str(error))
         return 2
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
-    except Exception:
-        if rclpy.ok():
-            raise
-        # SIGINT shut the context down while spin was building its wait set: rclpy then
-        # raises RCLError instead of ExternalShutdownException; it is still a clean stop.
     finally:
+        executor.shutdown(timeout_sec=1.0)
         if node is not None:
             node.destroy_node()
         rclpy.try_shutdown()
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
     return 0
 
 

@@ -13,12 +13,10 @@ import argparse
 import sys
 import threading
 
-import rclpy
-from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from std_msgs.msg import String
 
-from door_contract.node_support import create_contract_publisher, create_contract_subscription
+from door_contract.node_support import create_contract_publisher, create_contract_subscription, run_node
 from door_contract.topics import Topics
 from door_fsm.operator_commands import OperatorCommand, UnknownCommandError, parse_command
 
@@ -62,18 +60,14 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--approve-all", action="store_true", help="approve every request automatically")
     args, ros_args = parser.parse_known_args(argv)
-    rclpy.init(args=ros_args)
-    console = OperatorConsole(args.approve_all)
+    return run_node(lambda: _start_console(args.approve_all), ros_args)
+
+
+def _start_console(approve_all: bool) -> OperatorConsole:
+    console = OperatorConsole(approve_all)
     print("commands: " + ", ".join(c.value for c in OperatorCommand), flush=True)
     threading.Thread(target=_read_commands, args=(console,), daemon=True).start()
-    try:
-        rclpy.spin(console)
-    except (KeyboardInterrupt, ExternalShutdownException):
-        pass
-    finally:
-        console.destroy_node()
-        rclpy.try_shutdown()
-    return 0
+    return console
 
 
 if __name__ == "__main__":
