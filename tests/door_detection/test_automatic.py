@@ -81,3 +81,17 @@ def test_a_flat_painted_door_without_depth_step_still_needs_a_plane(straight_on)
     depth[:, 380:640] = rng.uniform(1.0, 6.0, size=depth[:, 380:640].shape).astype(np.float32)
     result = detect_automatic(straight_on.rgb, depth, straight_on.intrinsics)
     assert result.outcome in (DetectionOutcome.NO_DOOR_PLANE, DetectionOutcome.NO_DOOR_PAIR)
+
+
+def test_width_is_the_leafs_not_the_frames(sim_scene) -> None:
+    """The leaf (0.914 m in a 0.922 m opening) sits inside 6 cm jambs: the pairs of the
+    jambs' outer edges (1.04 m) and mixtures (0.98 m) are also door-like, and the
+    innermost pair must win; the width comes from the ray-plane corners, not from the
+    depth read a few pixels inside each edge."""
+    for distance in (2.0, 2.5, 3.0):
+        frame = sim_scene(distance, 0.0)
+        result = detect_automatic(frame.rgb, frame.depth, frame.intrinsics)
+        assert result.outcome is DetectionOutcome.DETECTED, result.reason
+        assert abs(result.estimate.width - 0.918) < 0.015, (distance, result.estimate.width)
+        bottom_width = np.linalg.norm(result.estimate.corners[1] - result.estimate.corners[0])
+        assert abs(bottom_width - result.estimate.width) < 0.02

@@ -135,9 +135,20 @@ def _detect(frame: Frame, options: DetectionOptions, hinge_side: Side | None,
     corners = corners_3d(candidate, lines, plane, frame.intrinsics)
     clock.mark("plane+grasp")
     confidence = float(np.clip(min(candidate.plane_fraction, fraction), 0.0, 1.0))
-    estimate = DoorEstimate(handle, plane.normal, hinge, candidate.width, corners, confidence,
+    estimate = DoorEstimate(handle, plane.normal, hinge, width_between_edges(corners), corners, confidence,
                             DetectionMode.AUTOMATIC, 1, up)
     return estimate, found.candidates
+
+
+def width_between_edges(corners: np.ndarray) -> float:
+    """Door width (m): the mean of the bottom and top edge lengths of the corners (bottom-left,
+    bottom-right, top-right, top-left) cut from the image edges' rays by the refined plane.
+
+    The pairing stage's width (between the RANSAC lines of depth read
+    ``edge_depth_offset`` px *inside* each edge) is short by 2·offset·z/f — 3–4 cm at
+    2–3 m — and is only a gate; the ray-plane corners sit on the image edges themselves.
+    """
+    return 0.5 * float(np.linalg.norm(corners[1] - corners[0]) + np.linalg.norm(corners[2] - corners[3]))
 
 
 def _door_up(candidate: DoorCandidate) -> np.ndarray:

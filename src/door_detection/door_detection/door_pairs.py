@@ -87,7 +87,8 @@ def find_doors(lines: VerticalLines, depth: np.ndarray, intrinsics: CameraIntrin
     unique = merge_duplicates(sized, options.duplicate_distance)
     checked = [c for c in (_check_plane(c, lines, depth, intrinsics, options) for c in unique)
                if c is not None]
-    return sorted(checked, key=lambda c: -c.score), len(unique)
+    frames = frame_pairs(checked, options.frame_width_max)
+    return sorted(checked, key=lambda c: (id(c) in frames, -c.score)), len(unique)
 
 
 def pair_lines(lines: VerticalLines, options: DetectionOptions) -> np.ndarray:
@@ -181,6 +182,28 @@ def merge_duplicates(candidates: list[DoorCandidate], distance: float) -> list[D
         if not any(_same_door(candidate, other, distance) for other in kept):
             kept.append(candidate)
     return kept
+
+
+def frame_pairs(candidates: list[DoorCandidate], frame_width: float,
+                tolerance: float = 0.01) -> set[int]:
+    """ids of the pairs that hold another pair nested inside them by at most ``frame_width``
+    on both sides. The leaf and its frame give two to four door-like pairs (leaf edges,
+    the jambs' outer edges, and mixtures) on one plane; the door is the innermost, so
+    these rank after it (they stay candidates in case the leaf pair shows no handle).
+    Offsets are measured across the outer pair, perpendicular to its edges."""
+    return {id(outer) for outer in candidates
+            if any(_nested(inner, outer, frame_width, tolerance) for inner in candidates if inner is not outer)}
+
+
+def _nested(inner: DoorCandidate, outer: DoorCandidate, frame_width: float, tolerance: float) -> bool:
+    direction = _mean_direction(outer.left_edge.direction, outer.right_edge.direction)
+    across = outer.right_edge.point - outer.left_edge.point
+    across = across - float(across @ direction) * direction
+    across /= np.linalg.norm(across)
+    left_inset = float((inner.left_edge.point - outer.left_edge.point) @ across)
+    right_inset = float((outer.right_edge.point - inner.right_edge.point) @ across)
+    insets = (left_inset, right_inset)
+    return all(-tolerance <= inset <= frame_width for inset in insets) and sum(insets) > tolerance
 
 
 def _same_door(a: DoorCandidate, b: DoorCandidate, distance: float) -> bool:

@@ -91,7 +91,9 @@ def merge_collinear(lines: VerticalLines, options: DetectionOptions) -> Vertical
 
     Segments i and j belong together when both end points of the shorter one lie within
     ``line_merge_distance`` px (horizontally) of the longer one's extension (the longer
-    segment's slope is the better estimate).  Groups are the connected components of
+    segment's slope is the better estimate) and the rows between them are no more than
+    ``min_line_length`` px: a short fragment's slope, extended far, would otherwise
+    bridge a door's edge and its frame's outer edge ~10 px beside it.  Groups are the connected components of
     that relation; each group becomes the least-squares line x = a·y + b through its
     members' end points (weighted by member length), spanning the group's rows.
     """
@@ -101,8 +103,10 @@ def merge_collinear(lines: VerticalLines, options: DetectionOptions) -> Vertical
     seg, lengths = lines.segments, lines.lengths
     x_at_tops = lines.x_at(np.broadcast_to(seg[:, 1], (n, n)))      # [i, j] = x_i(top_j)
     x_at_bottoms = lines.x_at(np.broadcast_to(seg[:, 3], (n, n)))
+    gap = np.maximum(seg[:, 1][:, None], seg[:, 1][None, :]) - np.minimum(seg[:, 3][:, None], seg[:, 3][None, :])
     near = (np.abs(x_at_tops - seg[:, 0][None, :]) <= options.line_merge_distance) & \
-           (np.abs(x_at_bottoms - seg[:, 2][None, :]) <= options.line_merge_distance)
+           (np.abs(x_at_bottoms - seg[:, 2][None, :]) <= options.line_merge_distance) & \
+           (gap <= options.min_line_length)
     i_longer = lengths[:, None] >= lengths[None, :]
     adjacency = np.where(i_longer, near, near.T)
     count, labels = connected_components(csr_matrix(adjacency), directed=False)

@@ -65,6 +65,7 @@ def _ranges() -> dict[str, FieldRange]:
         "min_line_inlier_fraction": r(0.0, 1.0, "", low_open=True),
         "max_edge_angle_deg": r(0.0, 90.0, "deg", low_open=True),
         "duplicate_distance": r(0.0, 1.0, "m"),
+        "frame_width_max": r(0.0, 0.5, "m"),
         "plane_inlier_distance": r(0.0, 0.5, "m", low_open=True),
         "diagonal_samples": r(4, 10000, "samples"),
         "min_plane_inlier_fraction": r(0.0, 1.0, "", low_open=True),
@@ -106,9 +107,13 @@ class DetectionOptions:
     and of the vote."""
 
     # --- 2-D stage: filtering, edges, lines (Sec. III-A, "image filtering") ---
-    line_scale: float = 0.5
-    """Scale of the image the 2-D stage runs on, (0.1, 1]. Not in the paper: halving the
-    1024×544 frame makes the bilateral filter, Canny and Hough ~4× cheaper."""
+    line_scale: float = 1.0
+    """Scale of the image the 2-D stage runs on, (0.1, 1]. Halving the frame makes the
+    bilateral filter, Canny and Hough ~4× cheaper (13.6 instead of 18.9 ms at 1024×544),
+    but at 3 m a jamb's two edges (6 cm, ~12 px) then fuse into one line, the frame's
+    outer edge replaces the leaf's, and the width (hence the hinge the door motions turn
+    about) is off by 4–8 cm. On the real photos full scale finds as many doors but more
+    clutter (see RESULTS.md)."""
     bilateral_diameter: int = 5
     """Bilateral filter neighbourhood diameter (px of the scaled image), [1, 15]
     (Sec. III-A: "a bilateral filter is applied to smooth the image")."""
@@ -186,6 +191,10 @@ class DetectionOptions:
     """Pairs whose edges both lie within this distance of another pair's are duplicates
     and merged (m), [0, 1]. Sec. III-A: "door pairs that have the same line equations
     are merged"."""
+    frame_width_max: float = 0.15
+    """Widest door frame (jamb face) expected around a leaf (m), [0, 0.5]. Beyond the paper:
+    a pair nested inside another one by at most this much on both sides is the leaf inside
+    its frame, and the outer pair (the frame's outer edges) is dropped."""
     plane_inlier_distance: float = 0.05
     """Points within this distance of the door plane are on the door (m), (0, 0.5].
     Sec. III-A: "the distance ... for any point on the door, is less than 5 cm from the
