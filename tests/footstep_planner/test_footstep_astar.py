@@ -180,6 +180,24 @@ def test_start_in_collision_or_not_finite_is_rejected() -> None:
     assert not_finite.outcome is PlanOutcome.INVALID_START
 
 
+def test_a_start_inside_the_safety_margins_is_planned_without_them() -> None:
+    """A walk stopped against the frame leaves the body within body_margin of the crate:
+    plan() refuses, plan_from_within_margins() steps away and says why; a start that truly
+    overlaps an obstacle stays refused."""
+    options = FootstepPlannerOptions()
+    near = options.body_half_width + options.body_margin / 2.0  # inside the margin, not the body
+    world = World((Obstacle.rectangle("crate", (0.0, near + 0.15), 0.0, 0.3, 0.3),))
+    planner = FootstepPlanner(world, options)
+    start, goal = stance_at(0.0, 0.0), Pose2D(0.0, -0.6, 0.0)
+    assert planner.plan(start, goal).outcome is PlanOutcome.INVALID_START
+    result, relaxed_from = planner.plan_from_within_margins(start, goal)
+    _succeeded(result)
+    assert "crate" in relaxed_from
+    inside = World((Obstacle.rectangle("crate", (0.0, 0.3), 0.0, 0.3, 0.3),))
+    result, _ = FootstepPlanner(inside, options).plan_from_within_margins(start, goal)
+    assert result.outcome is PlanOutcome.INVALID_START
+
+
 @pytest.mark.parametrize("goal", [Pose2D(2.5, 0.3, 0.0), Pose2D(2.0, -0.4, 0.0),
                                   Pose2D(1.5, 0.5, 0.3)])
 def test_weighted_astar_costs_at_least_astar_and_at_most_w_times(goal: Pose2D) -> None:

@@ -96,3 +96,14 @@ def test_the_seed_papers_robots_work_from_their_profiles(shared_data, profile):
         assert optical[:3, 2] @ forward == pytest.approx(np.cos(world.config.camera.head_pitch), abs=0.02)
         assert optical[2, 2] == pytest.approx(-np.sin(world.config.camera.head_pitch), abs=0.02)
         assert optical[:3, 0] @ world.base_pose()[:3, 1] == pytest.approx(-1.0, abs=0.05)  # x right
+
+
+def test_the_walking_posture_fits_the_profiles_body_rectangle():
+    """The footstep planner keeps a centred body_width × body_depth rectangle clear of the
+    door frame: every link of TALOS walking (grippers included) must lie inside it."""
+    with DoorWorld(WorldConfig(stance=StanceConfig(distance=3.0, yaw=0.3))) as sim:
+        extents = sim.body_extents()
+    walking = sim.profile.walking
+    assert max(extents["left"], extents["right"]) <= walking.body_width / 2.0
+    assert max(extents["ahead"], extents["behind"]) <= walking.body_depth / 2.0
+    assert min(extents.values()) > 0.1  # the probes did touch the robot

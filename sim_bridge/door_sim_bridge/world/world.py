@@ -230,6 +230,25 @@ class DoorWorld:
         """Base pose that puts the soles at ``left``/``right`` (midpoint, mean yaw, nominal height)."""
         return stance_midpoint(left, right) @ self._stance_offset
 
+    def body_extents(self, reach: float = 1.5) -> dict[str, float]:
+        """How far (m) the robot's collision shapes reach from its base, in the base frame:
+        ``ahead`` (+x), ``behind`` (−x), ``left`` (+y), ``right`` (−y) — the footprint a
+        footstep planner must keep clear of the door frame. Measured with a probe plane
+        ``reach`` m out on each side (PyBullet's closest points; exact for the shapes)."""
+        base = self.base_pose()
+        shape = self._client.createCollisionShape(pybullet.GEOM_BOX, halfExtents=[0.005, 3.0, 3.0])
+        extents = {}
+        for name, axis in (("ahead", 0), ("behind", 0), ("left", 1), ("right", 1)):
+            sign = -1.0 if name in ("behind", "right") else 1.0
+            direction = base[:3, axis] * sign
+            yaw = math.atan2(direction[1], direction[0])
+            probe = self._client.createMultiBody(0, shape, basePosition=(base[:3, 3] + reach * direction).tolist(),
+                                                 baseOrientation=pybullet.getQuaternionFromEuler((0.0, 0.0, yaw)))
+            nearest = min(point[8] for point in self._client.getClosestPoints(self.robot.body, probe, 2.0 * reach))
+            self._client.removeBody(probe)
+            extents[name] = reach - 0.005 - nearest
+        return extents
+
     def scene_penetration(self) -> float:
         """Deepest penetration (m, ≥ 0) of a robot link into the wall or door frame."""
         return self.scene_contact()[0]

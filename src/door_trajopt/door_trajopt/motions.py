@@ -71,13 +71,15 @@ class MotionOptions:
     post_inset: float = 0.022  # m, the latch-side post's face inside the leaf's free edge (0.87 m clear)
     forearm_clearance: float = 0.06  # m, forearm radius + margin to the post
     posture_weight: float = 0.05
+    door_stop_lateral: float = 0.10  # m from the base's centreline (hand's side) of the hand stopping a pushed door
 
     def __post_init__(self) -> None:
         checks = {"waypoints": (4, 200), "handle_turn": (0.1, HANDLE_LIMITS[1]),
                   "push_angle": (0.05, HINGE_LIMITS[1]), "pull_angle": (0.05, HINGE_LIMITS[1]),
                   "pregrasp_offset": (0.0, 0.2), "com_margin": (0.0, 0.1), "wall_clearance": (0.0, 0.3),
                   "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "posture_weight": (0.0, 100.0),
-                  "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3)}
+                  "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3),
+                  "door_stop_lateral": (0.0, 0.3)}
         for name, (low, high) in checks.items():
             value = getattr(self, name)
             if not (np.isfinite(value) and low <= value <= high):
@@ -352,14 +354,57 @@ def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
 
 
 def _ready(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
-    """The walking posture. Pull doors: the opening arm back to the profile's walking
-    posture (the other arm blocks the door). Push doors: the opened hand stays where it
-    is, as a stop the closer pushes the door against, and pushes the door open as the
-    robot walks."""
+    """The posture to walk through in. Pull doors: the opening arm back to the profile's
+    walking posture (the other arm blocks the door). Push doors: :func:`_door_stop`."""
+    if setup.door.push:
+        return _door_stop(setup, start_chain, options)
     walking = setup.chain.chain_of(setup.chain.kinematics.walking_q)
-    end = np.concatenate([start_chain if setup.door.push else walking, setup.start_door])
+    end = np.concatenate([walking, setup.start_door])
     problem = _problem(setup, start_chain, options, (False, False), [], end=end)
     return MotionProblem(problem, problem.linear_interpolation(end), setup.chain)
+
+
+def _door_stop(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
+    """Push doors: the released hand slides along the leaf to straight ahead of the body.
+
+    The closer presses the leaf against the fingers, so the hand stops the door; held where
+    it grasped (a few cm from the latch-side post) it would meet the post as the robot
+    walks, while straight ahead of the base it passes the opening's middle and pushes the
+    leaf open as the robot walks (the body pushes it further). The TCP keeps its
+    orientation and its distance from the face: every waypoint is on the straight line
+    along the leaf to ``door_stop_lateral`` from the base's centreline on the hand's side
+    (:func:`_door_stop_offset`; reaching across the chest moved the CoM out), so the
+    fingers never leave the face and the door never closes on the latch.
+    """
+    n, m = options.waypoints, setup.chain.size + 2
+    start_tcp = setup.chain.tcp_pose(start_chain)
+    lateral = float(np.copysign(options.door_stop_lateral, start_tcp[1, 3]))
+    offset = _door_stop_offset(setup.door, setup.start_door[0], start_tcp[:3, 3], lateral)
+    targets = []
+    for t in range(n):
+        target = start_tcp.copy()
+        target[:3, 3] += offset * t / (n - 1)
+        targets.append(target)
+    constraints = [waypoint_constraint(f"along_leaf_{t}", ConstraintKind.EQUALITY,
+                                       _tcp_target_error(setup.chain, _fixed_target(targets[t]), FULL_MASK),
+                                       6, [t], m, n) for t in range(1, n)]
+    problem = _problem(setup, start_chain, options, (False, False), constraints)
+    guess = np.empty((n, m))
+    q = start_chain
+    for t in range(n):  # continuation IK along the line
+        q = solve_ik(setup.chain, targets[t], q, IkOptions(max_iterations=60)).chain_q if t else q
+        guess[t] = np.concatenate([q, setup.start_door])
+    return MotionProblem(problem, guess, setup.chain)
+
+
+def _door_stop_offset(door: DoorModel, theta: float, hand: np.ndarray, lateral: float) -> np.ndarray:
+    """Displacement along the leaf at θ that brings ``hand`` to base y = ``lateral``:
+    d = a·R(θ)u with a = (lateral − hand_y)/(R(θ)u)_y (u = ``along``; the leaf is across
+    the base's y axis, so the divisor is far from 0 for any reachable door)."""
+    direction = door.leaf_rotation(theta) @ door.along
+    if abs(direction[1]) < 0.2:
+        raise TrajoptError(f"the leaf at {theta:.2f} rad does not cross the robot's front")
+    return (lateral - hand[1]) / direction[1] * direction
 
 
 def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:

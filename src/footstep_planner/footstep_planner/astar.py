@@ -29,7 +29,7 @@ import copy
 import heapq
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -116,6 +116,21 @@ class FootstepPlanner:
                             f"corridor for the body on a {CELL_SIZE} m grid", 0, started)
         search = _Search(self, goal, bounds, started)
         return search.run(start, roots)
+
+    def plan_from_within_margins(self, start: Stance, goal: Pose2D) -> tuple[PlanResult, str]:
+        """:meth:`plan`; when the start stance collides (a walk stopped against the door
+        frame leaves the robot inside the safety margins), plan once more with zero body and
+        foot margins, so the robot can step away from where it already stands.
+
+        Returns the result and, when the margins were dropped, why (else "").
+        """
+        result = self.plan(start, goal)
+        if result.outcome is not PlanOutcome.INVALID_START or "collides" not in result.reason:
+            return result, ""
+        if self._options.body_margin == 0.0 and self._options.foot_margin == 0.0:
+            return result, ""
+        tight = FootstepPlanner(self._world, replace(self._options, body_margin=0.0, foot_margin=0.0))
+        return tight.plan(start, goal), result.reason
 
     def _reject(self, start: Stance, goal: Pose2D) -> tuple[PlanOutcome, str] | None:
         """Why the request cannot be planned at all, or None."""

@@ -36,7 +36,7 @@ from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
 from footstep_planner.goals import replan_needed, stand_pose_for_opening, through_door_pose
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import NODE_NAME, PLANNER_PARAMETERS
-from footstep_planner.plan import FootstepPlan
+from footstep_planner.plan import FootstepPlan, PlanResult
 from footstep_planner.world import World
 
 
@@ -90,7 +90,7 @@ class FootstepPlannerNode(Node):
             return
         try:
             start, goal, world = self._problem(request)
-            result = FootstepPlanner(world, self.options).plan(start, goal)
+            result = self._plan(world, start, goal)
         except (RequestRefused, FootstepPlannerError, ValueError) as error:
             self._answer(request, OutcomeStatus.REJECTED, str(error))
             return
@@ -112,6 +112,12 @@ class FootstepPlannerNode(Node):
         self._answer(request, OutcomeStatus.SUCCESS, "", result.planning_time,
                      {"stamp_ns": stamp_ns(path.header.stamp), "steps": len(result.plan.steps), "length_m": round(length, 3),
                       "expansions": result.expansions})
+
+    def _plan(self, world: World, start: Stance, goal: Pose2D) -> PlanResult:
+        result, relaxed_from = FootstepPlanner(world, self.options).plan_from_within_margins(start, goal)
+        if relaxed_from:
+            self.get_logger().warning(f"{relaxed_from}: planned once more without safety margins")
+        return result
 
     def _problem(self, request: FootstepRequest) -> tuple[Stance, Pose2D, World]:
         if self.inputs.base_pose is None:
