@@ -61,6 +61,26 @@ def planner_options(profile_name: str, parameters: dict) -> FootstepPlannerOptio
         max_planning_time=parameters["max_planning_time"])
 
 
+def door_geometry_from_estimate(estimate: DoorEstimate, opening: DoorOpening, angle: float,
+                                handle_standoff: float) -> DoorGeometry:
+    """The planner's door from a detector estimate (odom): the handle's face point fixes the
+    door along the wall; the measured edges (``corners``: bottom-hinge, bottom-free, …) give
+    the opening between the jambs and the handle's distance from the free edge. Without
+    edges (operator-aided estimates) the DRC door's dimensions are assumed."""
+    normal = np.asarray(estimate.normal[:2]) / np.linalg.norm(estimate.normal[:2])
+    face = np.asarray(estimate.handle_position[:2]) - handle_standoff * normal
+    dimensions = {}
+    corners = np.asarray(estimate.corners, dtype=float)
+    if corners.shape == (4, 3) and np.isfinite(corners).all():
+        hinge, free = corners[0, :2], corners[1, :2]
+        width = float(np.linalg.norm(free - hinge))
+        handle_offset = width - float((face - hinge) @ (free - hinge)) / max(width, 1e-9)
+        if 0.5 <= width <= 1.5 and 0.0 < handle_offset < width:
+            dimensions = {"leaf_width": width, "clear_opening": width, "handle_offset": handle_offset}
+    return DoorGeometry.from_handle(float(face[0]), float(face[1]), math.atan2(normal[1], normal[0]),
+                                    HingeSide(estimate.hinge_side.value), opening, angle=angle, **dimensions)
+
+
 class FootstepPlannerNode(Node):
     def __init__(self) -> None:
         super().__init__(NODE_NAME)
@@ -161,12 +181,8 @@ class FootstepPlannerNode(Node):
         return Stance.nominal(body, self.options.nominal_foot_separation)
 
     def _door_geometry(self, request: FootstepRequest, estimate: DoorEstimate) -> DoorGeometry:
-        normal = np.asarray(estimate.normal[:2])
-        normal_yaw = math.atan2(normal[1], normal[0])
-        face = np.asarray(estimate.handle_position[:2]) - self.parameters["handle_standoff"] * normal / np.linalg.norm(normal)
-        return DoorGeometry.from_handle(float(face[0]), float(face[1]), normal_yaw,
-                                        HingeSide(estimate.hinge_side.value), DoorOpening(request.opening),
-                                        angle=request.door_angle)
+        return door_geometry_from_estimate(estimate, DoorOpening(request.opening), request.door_angle,
+                                           self.parameters["handle_standoff"])
 
     def _answer(self, request: FootstepRequest, status: OutcomeStatus, reason: str,
                 planning_time: float = 0.0, details: dict | None = None) -> None:
