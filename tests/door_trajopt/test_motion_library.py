@@ -139,3 +139,22 @@ def test_planned_turn_and_push_open_the_simulated_door(backend):
         assert state.hinge_angle > 0.15  # planned 0.2 rad
     finally:
         world.close()
+
+
+def test_push_never_swings_the_door_past_its_goal(scene, approach):
+    """The hinge is a free DOF of the optimisation: unbounded, the optimum swung the door
+    out to 0.27–0.42 rad and pulled it back, and TALOS's forearm met the post on the way."""
+    world, kinematics, estimate = scene
+    setup, approach_plan = approach
+    library, k = MotionLibrary(), setup.chain.size
+    for width in (estimate.width, estimate.width + 0.04):
+        wide = motion_setup(world, kinematics, replace(estimate, width=width))
+        turn = library.plan(Motion.TURN_HANDLE, wide, approach_plan.result.trajectory[-1, :k])
+        assert turn.succeeded, turn.result.message
+        push = library.plan(Motion.PUSH_DOOR,
+                            replace(wide, start_door=start_door_for(Motion.PUSH_DOOR, 0.0, library.options)),
+                            turn.result.trajectory[-1, :k])
+        assert push.succeeded, push.result.message
+        hinge = push.result.trajectory[:, k]
+        assert hinge.max() <= library.options.push_angle + 1e-6
+        assert hinge[-1] == pytest.approx(library.options.push_angle, abs=1e-6)
