@@ -117,6 +117,8 @@ def test_scribble_outside_the_image_is_refused(camera, rendered, detector):
     scribble = PolygonStamped()
     scribble.polygon.points = [Point32(x=5000.0, y=10.0), Point32(x=5010.0, y=12.0), Point32(x=5005.0, y=20.0)]
     camera.pubs["SCRIBBLE"].publish(scribble)
+    # the scribble and the frame travel on different topics: wait until the node has it
+    assert spin_until(camera.executor, lambda: any("scribble with 3 points" in m for m in camera.messages), 10.0)
     depth = np.where(np.isfinite(frame.depth), frame.depth, np.nan).astype(np.float32)
     before = camera.rejected[-1] if camera.rejected else 0
     camera.publish(300.0, np.ascontiguousarray(frame.rgb), depth, frame.intrinsics, frame.camera_pose)

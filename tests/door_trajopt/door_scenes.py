@@ -21,6 +21,9 @@ from footstep_planner.footstep_planner_node import planner_options
 from footstep_planner.goals import stand_pose_for_opening
 
 
+PULL_SWEEP_HALF_DEPTH = 0.15  # the footstep planner node's default
+
+
 def estimate_from_world(world: DoorWorld) -> DoorEstimate:
     """A perfect detector: the estimate the detector should publish, from the ground truth."""
     truth = world.door_ground_truth()
@@ -40,7 +43,8 @@ def stand_world(opening: DoorOpening = DoorOpening.PUSH, hinge: SimHingeSide = S
     options = planner_options("talos", {"heuristic_weight": 1.0, "max_expansions": 1000, "max_planning_time": 1.0})
     geometry = DoorGeometry.from_handle(estimate.handle_position[0] + 0.06, estimate.handle_position[1], math.pi,
                                         PlannerHinge(hinge.value), PlannerOpening(opening.value))
-    stand = stand_pose_for_opening(geometry, options, reach=reach, handle_offset=handle_offset)
+    stand = stand_pose_for_opening(geometry, options, reach=reach, handle_offset=handle_offset,
+                                   sweep_half_depth=PULL_SWEEP_HALF_DEPTH)
     return DoorWorld(WorldConfig(door=door, stance=StanceConfig(distance=-stand.x, lateral_offset=stand.y)))
 
 

@@ -73,7 +73,9 @@ class DoorDetectorNode(Node):
             return
         self.scribble = (time.monotonic(), pixels)
         self.voter.reset()  # the operator's word replaces what was voted so far
-        self.get_logger().info(f"scribble with {len(pixels)} points: operator-aided detection next")
+        note = f"scribble with {len(pixels)} points: operator-aided detection next"
+        self.get_logger().info(note)
+        self.heartbeat.update(Health.OK, note, frames=self.frames, rejected=self.rejected)
 
     def _on_stream(self, stream: str, msg: Image | CameraInfo | PoseStamped) -> None:
         stamp = from_time_msg(msg.header.stamp)

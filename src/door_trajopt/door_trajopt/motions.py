@@ -211,10 +211,10 @@ def _doorway_clearance(setup: MotionSetup, options: MotionOptions):
 
 # --------------------------------------------------------------------- problem assembly
 def _limits(setup: MotionSetup, door_moves: tuple[bool, bool], start_chain: np.ndarray,
-            pinned: tuple[str, ...] = (), hinge_max: float = HINGE_LIMITS[1]) -> JointLimits:
+            pinned: tuple[str, ...] = ()) -> JointLimits:
     chain = setup.chain
     lower = [*chain.lower, *(HINGE_LIMITS[0], HANDLE_LIMITS[0])]
-    upper = [*chain.upper, *(hinge_max, HANDLE_LIMITS[1])]
+    upper = [*chain.upper, *(HINGE_LIMITS[1], HANDLE_LIMITS[1])]
     for index, name in enumerate(chain.joint_names):
         if name in pinned:  # e.g. the torso while the other hand holds the door
             lower[index] = upper[index] = float(start_chain[index])
@@ -225,8 +225,7 @@ def _limits(setup: MotionSetup, door_moves: tuple[bool, bool], start_chain: np.n
 
 
 def _problem(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions, door_moves,
-             constraints, end: np.ndarray | None = None, pinned: tuple[str, ...] = (),
-             hinge_max: float = HINGE_LIMITS[1]) -> TrajectoryProblem:
+             constraints, end: np.ndarray | None = None, pinned: tuple[str, ...] = ()) -> TrajectoryProblem:
     chain = setup.chain
     m = chain.size + 2
     start = np.concatenate([start_chain, setup.start_door])
@@ -236,8 +235,7 @@ def _problem(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions
                                   _com_in_polygon(setup, options.com_margin), 4,
                                   range(1, options.waypoints), m, options.waypoints)]
     return TrajectoryProblem(
-        n_waypoints=options.waypoints, start=start, limits=_limits(setup, door_moves, start_chain, pinned, hinge_max),
-        end=end,
+        n_waypoints=options.waypoints, start=start, limits=_limits(setup, door_moves, start_chain, pinned), end=end,
         smoothness=SmoothnessSpec(), posture=PostureCost(nominal, posture_weights),
         constraints=tuple(constraints) + tuple(common),
         dof_names=(*chain.joint_names, "door_hinge", "door_handle"))
@@ -292,14 +290,14 @@ def _approach(setup: MotionSetup, start_chain: np.ndarray, options: MotionOption
 
 
 def _closed_chain(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions,
-                  door_path: np.ndarray, door_moves, extra, hinge_max: float = HINGE_LIMITS[1]) -> MotionProblem:
+                  door_path: np.ndarray, door_moves, extra) -> MotionProblem:
     """Every waypoint holds the handle; the door follows ``door_path`` (n, 2) in the guess."""
     n, m = options.waypoints, setup.chain.size + 2
     target = _grasp_target(setup, _tcp_in_grasp(setup, start_chain))
     constraints = [waypoint_constraint("closed_chain", ConstraintKind.EQUALITY,
                                        _tcp_target_error(setup.chain, target, FULL_MASK), 6, range(1, n), m, n),
                    *extra(m, n)]
-    problem = _problem(setup, start_chain, options, door_moves, constraints, hinge_max=hinge_max)
+    problem = _problem(setup, start_chain, options, door_moves, constraints)
     guess = np.empty((n, m))
     q = start_chain
     for t in range(n):  # continuation IK along the door path
@@ -319,19 +317,23 @@ def _turn(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -
 
 
 def _swing(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
+    """Push or pull: the hinge follows a fixed schedule θ_t = θ₀ + (θ_goal − θ₀)·t/(n−1)
+    (seed 001 Sec. IV: "rotate ~40° about the door hinge") and the arm's redundancy is
+    optimised around it. Left free, the hinge DOF let the optimum swing the door out to
+    0.27–0.42 rad and pull it back; past ~0.3 rad TALOS's forearm meets the post."""
     n = options.waypoints
     theta, phi = setup.start_door
     angle = options.push_angle if setup.door.push else options.pull_angle
     path = np.column_stack([np.linspace(theta, angle, n), np.full(n, phi)])
+
     def extra(m: int, n: int) -> list:
-        constraints = [fixed_dof("door_opened", setup.chain.size, {n - 1: angle}, m, n)]
+        schedule = {t: float(path[t, 0]) for t in range(1, n)}
+        constraints = [fixed_dof("door_schedule", setup.chain.size, schedule, m, n)]
         if setup.door.push:  # the forearm goes through the doorway with the door
             constraints.append(waypoint_constraint("doorway_clearance", ConstraintKind.INEQUALITY,
                                                    _doorway_clearance(setup, options), 2, range(1, n), m, n))
         return constraints
-    # the door never swings past its goal: a free hinge DOF let the optimum swing it out and
-    # pull it back, and past ~0.3 rad TALOS's forearm meets the post
-    return _closed_chain(setup, start_chain, options, path, (True, False), extra, hinge_max=max(angle, theta))
+    return _closed_chain(setup, start_chain, options, path, (True, False), extra)
 
 
 def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:

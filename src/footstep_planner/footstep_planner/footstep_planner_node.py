@@ -155,7 +155,8 @@ class FootstepPlannerNode(Node):
             sweep = (0.0, math.pi / 2) if door.opening is DoorOpening.PULL else None
             reach = self.parameters["stand_reach_pull" if door.opening is DoorOpening.PULL else "stand_reach"]
             goal = stand_pose_for_opening(door, self.options, reach=reach,
-                                          handle_offset=self.parameters["stand_handle_offset"])
+                                          handle_offset=self.parameters["stand_handle_offset"],
+                                          sweep_half_depth=self.parameters["pull_sweep_half_depth"])
             return start, goal, World.from_door(door, sweep)
         angle = max(request.door_angle, self.parameters["passage_door_angle"])
         if self.passage_angle is not None and replan_needed(self.passage_angle, angle):

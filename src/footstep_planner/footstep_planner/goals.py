@@ -26,7 +26,8 @@ DEFAULT_SWEEP_CLEARANCE = 0.05
 def stand_pose_for_opening(door: DoorGeometry, options: FootstepPlannerOptions,
                            reach: float = DEFAULT_REACH,
                            handle_offset: float = DEFAULT_HANDLE_OFFSET,
-                           sweep_clearance: float = DEFAULT_SWEEP_CLEARANCE) -> Pose2D:
+                           sweep_clearance: float = DEFAULT_SWEEP_CLEARANCE,
+                           sweep_half_depth: float | None = None) -> Pose2D:
     """Where the robot stands, facing the door, to grasp and open it.
 
     The base stands ``reach`` m in front of the door plane (s = reach).
@@ -46,21 +47,26 @@ def stand_pose_for_opening(door: DoorGeometry, options: FootstepPlannerOptions,
 
     i.e. u >= half_width + sqrt((W + clearance)^2 - (reach - half_depth)^2):
     beside the handle side, further from the hinge than the door is wide.
+    ``sweep_half_depth`` replaces half_depth there when given: while opening, the arms
+    are on the handle, and what the leaf must miss is the torso, not the walking
+    posture's grippers.
     """
     check_range("reach", reach, FieldRange(0.2, 1.5, "m"))
     check_range("handle_offset", handle_offset, FieldRange(-1.0, 1.0, "m"))
     check_range("sweep_clearance", sweep_clearance, FieldRange(0.0, 0.5, "m"))
     along = door.leaf_width - door.handle_offset - handle_offset
     if door.opening is DoorOpening.PULL:
-        along = max(along, _outside_sweep(door, options, reach, sweep_clearance))
+        along = max(along, _outside_sweep(door, options, reach, sweep_clearance, sweep_half_depth))
     x, y = door.to_world(along, reach)
     return Pose2D(x, y, door.facing_yaw)
 
 
 def _outside_sweep(door: DoorGeometry, options: FootstepPlannerOptions, reach: float,
-                   clearance: float) -> float:
+                   clearance: float, sweep_half_depth: float | None) -> float:
     """Smallest u that keeps the footprint, facing the door at s = reach, out of the swing."""
     half_width, half_depth = _footprint_half_extents(options)
+    if sweep_half_depth is not None:
+        half_depth = sweep_half_depth
     radius = door.leaf_width + door.leaf_thickness + clearance
     near_face = reach - half_depth
     if near_face >= radius:

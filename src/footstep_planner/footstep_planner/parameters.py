@@ -14,6 +14,8 @@ PLANNER_PARAMETERS = (
                   minimum=0.2, maximum=1.5),
     ParameterSpec("stand_reach_pull", 0.75, "base to door plane when opening a pull door (room to pull "
                   "the handle towards the robot)", unit="m", minimum=0.2, maximum=1.5),
+    ParameterSpec("pull_sweep_half_depth", 0.15, "how far the torso reaches ahead of the base, kept out "
+                  "of a pull door's swing (the arms are on the handle)", unit="m", minimum=0.05, maximum=0.5),
     ParameterSpec("stand_handle_offset", 0.20, "base to handle along the wall, towards the hinge",
                   unit="m", minimum=-0.5, maximum=0.8),
     ParameterSpec("handle_standoff", 0.06, "door face behind the handle grasp point", unit="m",
