@@ -33,6 +33,7 @@ class Peer:
                                      lambda m: m.data and self.requests.append(m.data))
         self.reports = []
         self.watching = []  # required nodes the supervisor reports having seen
+        self.messages = []  # its diagnostics messages
         create_contract_subscription(self.node, Topics.TASK_REPORT,
                                      lambda m: self.reports.append(decode(TaskReport, m.data)))
         self.node.create_subscription(DiagnosticArray, Topics.DIAGNOSTICS.name, self._on_diagnostics, 10)
@@ -44,6 +45,7 @@ class Peer:
                 self.failures.append(values["failure"])
             if "watching" in values:
                 self.watching.append(values["watching"])
+            self.messages.append(status.message)
 
     def _on_state(self, msg):
         self.states.append(msg.data)
@@ -125,3 +127,27 @@ def test_a_killed_node_fails_the_task(workspace, rclpy_context, tmp_path):
         fsm.send_signal(2)
         assert fsm.wait(timeout=20) == 0
         peer.node.destroy_node()
+
+
+def test_the_task_starts_only_when_the_required_nodes_are_up(workspace, rclpy_context, tmp_path):
+    """DETECT_DOOR's clock must not run while the graph is still starting."""
+    peer = Peer(rclpy_context)
+    log = tmp_path / "fsm.log"
+    fsm = subprocess.Popen(
+        [str(workspace.executable(FSM.package, FSM.executable)), "--ros-args",
+         "--params-file", str(workspace.params_file("fsm_supervisor")), "-p", "start_delay:=0.2",
+         "-p", "required_nodes:=['fsm_test_peer', 'fsm_test_late_node']"],
+        env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
+    late = None
+    try:
+        assert peer.wait(lambda: any("waiting for fsm_test_late_node" in m for m in peer.messages), 30.0), \
+            log.read_text()
+        assert peer.states == []
+        late = rclpy.create_node("fsm_test_late_node", context=rclpy_context)
+        assert peer.wait(lambda: "DETECT_DOOR" in peer.states, 30.0), log.read_text()
+    finally:
+        fsm.send_signal(2)
+        assert fsm.wait(timeout=20) == 0
+        peer.node.destroy_node()
+        if late is not None:
+            late.destroy_node()

@@ -155,12 +155,27 @@ class FsmSupervisorNode(Node):
 
     def _tick(self) -> None:
         if not self._started:
-            if self._now() >= self._start_at:
-                self._started = True
-                self._perform(self.machine.start(self._now()))
+            self._start_when_ready()
             return
         self._check_nodes()
         self._perform(self.machine.tick(self._now()))
+
+    def _start_when_ready(self) -> None:
+        """Start once start_delay has passed and every required node is up (the planning
+        time of DETECT_DOOR is then the detector's, not the graph's start-up), or anyway
+        after graph_timeout more, naming the absent nodes."""
+        now = self._now()
+        if now < self._start_at:
+            return
+        missing = sorted(set(self.parameters["required_nodes"]) - set(self.get_node_names()))
+        if missing and now < self._start_at + self.parameters["graph_timeout"]:
+            self.heartbeat.update(self.heartbeat.health, f"waiting for {', '.join(missing)}")
+            return
+        if missing:
+            self.get_logger().warning(f"starting without {', '.join(missing)}: not up after "
+                                      f"{self.parameters['graph_timeout']:.0f} s")
+        self._started = True
+        self._perform(self.machine.start(now))
 
     def _check_nodes(self) -> None:
         present = set(self.get_node_names())

@@ -20,4 +20,6 @@ SUPERVISOR_PARAMETERS = (
                   "nodes whose disappearance fails the task"),
     ParameterSpec("start_delay", 1.0, "wait before starting the task (lets the graph connect)", unit="s",
                   minimum=0.0, maximum=60.0),
+    ParameterSpec("graph_timeout", 30.0, "after start_delay, how long to wait for every required node "
+                  "before starting anyway", unit="s", minimum=0.0, maximum=600.0),
 )
