@@ -49,6 +49,8 @@ class MotionLibrary:
     door_velocity_limits: tuple[float, float] = (0.15, 0.5)  # rad/s of hinge and handle: a door is heavy
     max_iterations: int = 120  # per initial guess (SQP QP solves / CHOMP updates)
     time_budget_s: float = 10.0  # no further initial guess is tried after this
+    constraint_tolerance: float = 1e-6  # m / rad: a micrometre on the handle is held
+    cost_tolerance: float = 1e-6  # relative cost/merit change deemed converged
     seed: int = 0
     _cache: dict = field(default_factory=dict)  # motion → last feasible trajectory (n, m)
 
@@ -59,9 +61,13 @@ class MotionLibrary:
             setup = anchored_to_hand(setup, start_chain)
         built = build_motion(motion, setup, start_chain, self.options)
         rng = np.random.default_rng(self.seed)
-        solver = (SqpSolver(built.problem, SqpOptions(max_iterations=self.max_iterations))
+        solver = (SqpSolver(built.problem, SqpOptions(max_iterations=self.max_iterations,
+                                                      constraint_tolerance=self.constraint_tolerance,
+                                                      cost_tolerance=self.cost_tolerance))
                   if backend is Backend.SQP else
-                  ChompSolver(built.problem, ChompOptions(max_iterations=self.max_iterations)))
+                  ChompSolver(built.problem, ChompOptions(max_iterations=self.max_iterations,
+                                                          constraint_tolerance=self.constraint_tolerance,
+                                                          cost_tolerance=self.cost_tolerance)))
         result, attempts, used_guess = None, 0, None
         for guess in self._guesses(motion, built, rng):  # one solver: its factorisation is reused
             if attempts and time.perf_counter() - started > self.time_budget_s:

@@ -59,7 +59,7 @@ class Motion(str, Enum):
 class MotionOptions:
     """Motion-library settings (SI units). Validated; errors name the field and range."""
 
-    waypoints: int = 16
+    waypoints: int = 10
     handle_turn: float = 0.8  # rad; seed 001 turned ~80°, the DRC-like sim handle stops at 1.0 rad
     push_angle: float = 0.2  # rad the arm pushes the door open (the body pushes it further)
     pull_angle: float = 0.35  # rad (~20°; seed 001: ~40°, TALOS reaches less from outside the sweep)
