@@ -5,6 +5,7 @@ This is the only module of the contract that imports rclpy at module level.
 
 from __future__ import annotations
 
+import faulthandler
 import signal
 from collections.abc import Callable, Iterable
 
@@ -59,6 +60,10 @@ def declare_parameters(node: Node, specs: Iterable[ParameterSpec]) -> dict[str, 
     return values
 
 
+SLOW_SHUTDOWN_S = 3.0
+"""Seconds after which a node's clean shutdown is reported as slow (with its stacks)."""
+
+
 class StopRequest:
     """SIGINT/SIGTERM handler: the first signal asks the spin loop to stop between callbacks.
 
@@ -104,10 +109,13 @@ def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
+        # a shutdown slower than this dumps every thread's stack to the log (diagnosis only)
+        faulthandler.dump_traceback_later(SLOW_SHUTDOWN_S, exit=False)
         executor.shutdown(timeout_sec=1.0)
         if node is not None:
             node.destroy_node()
         rclpy.try_shutdown()
+        faulthandler.cancel_dump_traceback_later()
         for sig, handler in previous.items():
             signal.signal(sig, handler)
     return 0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import pytest
 
@@ -178,6 +179,25 @@ def test_start_in_collision_or_not_finite_is_rejected() -> None:
     assert "crate" in colliding.reason
     not_finite = OPEN_SPACE.plan(stance_at(math.nan, 0.0), Pose2D(1.0, 0.0, 0.0))
     assert not_finite.outcome is PlanOutcome.INVALID_START
+
+
+def test_snap_to_goal_ends_exactly_on_the_stand_pose() -> None:
+    """The search stops within 5 cm / 0.1 rad of its goal; the arms need the stand pose
+    itself. Snapping adds up to three checked steps that land both feet on it."""
+    door = door_facing_robot(DoorOpening.PUSH, leaf_width=0.914, clear_opening=0.914, handle_offset=0.136)
+    world = World.from_door(door)
+    options = FootstepPlannerOptions(heuristic_weight=1.5, snap_to_goal=True)
+    stand = stand_pose_for_opening(door, options)
+    missed = 0
+    for lateral, yaw in ((0.3, 0.25), (-0.25, -0.2), (0.05, 0.3), (-0.3, 0.1)):
+        start = stance_at(-1.0, lateral, yaw)
+        loose = _succeeded(FootstepPlanner(world, replace(options, snap_to_goal=False)).plan(start, stand)).plan
+        missed += loose.final_stance.body_pose.distance_to(stand) > 0.005
+        plan = _succeeded(FootstepPlanner(world, options).plan(start, stand)).plan
+        final = plan.final_stance.body_pose
+        assert final.distance_to(stand) < 1e-9 and abs(final.yaw_difference(stand)) < 1e-9
+        assert kinematic_violations(plan) == [] and collisions_along(plan, world) == []
+    assert missed > 0  # the scenarios do exercise the snapping
 
 
 def test_a_start_inside_the_safety_margins_is_planned_without_them() -> None:

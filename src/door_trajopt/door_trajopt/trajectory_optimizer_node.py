@@ -118,7 +118,7 @@ class TrajectoryOptimizerNode(Node):
         setup = MotionSetup(chain, door, estimate.width, support_polygon(chain),
                             start_door_for(motion, request.door_angle, self.library.options))
         self.get_logger().info(f"planning {motion.value} with the {side.value} arm ({backend.value})")
-        return self.library.plan(motion, setup, chain.chain_of(body_q), backend)
+        return self.library.plan(motion, setup, chain.chain_of(body_q), backend, variant=request.request_id)
 
     def _answer(self, request: MotionRequest, status: OutcomeStatus, reason: str,
                 plan: MotionPlan | None = None, proposal_stamp_ns: int = -1) -> None:

@@ -26,7 +26,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from footstep_planner.footstep import Foot
+from footstep_planner.footstep import Foot, Footstep
 from footstep_planner.geometry import (FloatArray, PackedPolygons, rectangle_axes,
                                        rectangle_corners, rectangles_overlap_polygons)
 from footstep_planner.options import FootstepPlannerOptions
@@ -108,6 +108,23 @@ def is_kinematically_valid(action: StepAction, options: FootstepPlannerOptions) 
     within = (-options.max_backward_step - tolerance <= x <= options.max_stride + tolerance
               and options.min_foot_separation - tolerance <= y
               <= options.max_stance_separation + tolerance
+              and abs(yaw) <= options.max_turn + tolerance)
+    return within and not _soles_overlap(x, y, yaw, options)
+
+
+def is_reachable_step(support: Footstep, swing: Footstep, options: FootstepPlannerOptions) -> bool:
+    """Can ``swing`` be placed from ``support`` (the other foot)? The same limits as
+    :func:`is_kinematically_valid`, for an arbitrary placement: the swing pose in the
+    support sole's frame, mirrored for a right swing foot."""
+    tolerance = 1e-9
+    dx, dy = swing.x - support.x, swing.y - support.y
+    cos_yaw, sin_yaw = math.cos(support.yaw), math.sin(support.yaw)
+    x, y = cos_yaw * dx + sin_yaw * dy, -sin_yaw * dx + cos_yaw * dy
+    yaw = math.remainder(swing.yaw - support.yaw, math.tau)
+    sign = swing.foot.side_sign
+    y, yaw = sign * y, sign * yaw
+    within = (-options.max_backward_step - tolerance <= x <= options.max_stride + tolerance
+              and options.min_foot_separation - tolerance <= y <= options.max_stance_separation + tolerance
               and abs(yaw) <= options.max_turn + tolerance)
     return within and not _soles_overlap(x, y, yaw, options)
 

@@ -33,7 +33,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from footstep_planner.actions import ActionSet, ActionTable
+from footstep_planner.actions import ActionSet, ActionTable, is_reachable_step
 from footstep_planner.footprint import FootprintChecker
 from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
 from footstep_planner.geometry import Bounds, wrap_angle, wrap_angles
@@ -309,6 +309,33 @@ class _Search:
             return False
         return not self._checker.footstep_collides(self._closing_step(index))
 
+    def _snapping_steps(self, last: Footstep) -> tuple[Footstep, ...]:
+        """Steps from the search's final stance (within the goal tolerance) onto the goal's
+        nominal stance. Feet alternate, so the foot that did not move last goes first; when
+        it cannot reach its target from there (a sideways shift towards it), it first steps
+        in place and the other foot leads. None when no sequence stays within the step
+        limits and clear of obstacles."""
+        options = self._options
+        target = Stance.nominal(self._goal, options.nominal_foot_separation)
+        if target.foot(last.foot) == last and target.foot(last.foot.other) == \
+                last.nominal_partner(options.nominal_foot_separation):
+            return ()
+        if self._checker.stance_collision(target) is not None:
+            return ()
+        in_place = last.nominal_partner(options.nominal_foot_separation)
+        for sequence in ((target.foot(last.foot.other), target.foot(last.foot)),
+                         (in_place, target.foot(last.foot), target.foot(last.foot.other))):
+            if self._walkable(last, sequence):
+                return sequence
+        return ()
+
+    def _walkable(self, support: Footstep, sequence: tuple[Footstep, ...]) -> bool:
+        for placed in sequence:
+            if not is_reachable_step(support, placed, self._options) or self._checker.footstep_collides(placed):
+                return False
+            support = placed
+        return True
+
     def _closing_step(self, index: int) -> Footstep:
         x, y, yaw, is_left = self._nodes[index]
         support = Footstep(x, y, yaw, Foot.LEFT if is_left else Foot.RIGHT)
@@ -388,7 +415,9 @@ class _Search:
 
     def _success(self, start: Stance, index: int, expansions: int) -> PlanResult:
         steps = (*self._path(index), self._closing_step(index))
-        cost = self._costs[index] + self._options.step_cost
+        snap = self._snapping_steps(steps[-1]) if self._options.snap_to_goal else ()
+        steps += snap
+        cost = self._costs[index] + self._options.step_cost * (1 + len(snap))
         elapsed = time.perf_counter() - self._started
         plan = FootstepPlan(start, self._goal, steps, cost, expansions, elapsed)
         return PlanResult(PlanOutcome.SUCCESS, f"{len(steps)} steps found", plan, expansions,

@@ -10,6 +10,7 @@ outcome with the planner's reason, within its expansion and time bounds.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 from rclpy.node import Node
@@ -110,7 +111,7 @@ class FootstepPlannerNode(Node):
             return
         try:
             start, goal, world = self._problem(request)
-            result = self._plan(world, start, goal)
+            result = self._plan(world, start, goal, self._options_for(request.goal))
         except (RequestRefused, FootstepPlannerError, ValueError) as error:
             self._answer(request, OutcomeStatus.REJECTED, str(error))
             return
@@ -133,8 +134,14 @@ class FootstepPlannerNode(Node):
                      {"stamp_ns": stamp_ns(path.header.stamp), "steps": len(result.plan.steps), "length_m": round(length, 3),
                       "expansions": result.expansions})
 
-    def _plan(self, world: World, start: Stance, goal: Pose2D) -> PlanResult:
-        result, relaxed_from = FootstepPlanner(world, self.options).plan_from_within_margins(start, goal)
+    def _options_for(self, goal: str) -> FootstepPlannerOptions:
+        """The stand pose is where the arm must reach the handle: the walk ends exactly on it
+        (snap_to_goal; 4 cm and 3.8° off, within the search's goal tolerance, made a turn
+        unreachable). The passage keeps the search's tolerance."""
+        return replace(self.options, snap_to_goal=True) if goal == "stand" else self.options
+
+    def _plan(self, world: World, start: Stance, goal: Pose2D, options: FootstepPlannerOptions) -> PlanResult:
+        result, relaxed_from = FootstepPlanner(world, options).plan_from_within_margins(start, goal)
         if relaxed_from:
             self.get_logger().warning(f"{relaxed_from}: planned once more without safety margins")
         return result

@@ -65,6 +65,9 @@ class FootstepPlannerOptions:
     """Allowed distance of the final stance centre from the goal (m), (0, 1]."""
     goal_yaw_tolerance: float = 0.10
     """Allowed yaw error of the final stance (rad), (0, pi]."""
+    snap_to_goal: bool = False
+    """After the search, place both feet exactly on the goal's nominal stance with up to two
+    more (small, checked) steps; for goals the arms work from, e.g. the stand pose."""
     grid_resolution: float = 0.025
     """Cell size of the closed set in x and y (m), (0, 0.5]."""
     yaw_resolution: float = 0.05
@@ -74,6 +77,10 @@ class FootstepPlannerOptions:
 
     def __post_init__(self) -> None:
         for option in fields(self):
+            if option.name == "snap_to_goal":
+                if not isinstance(self.snap_to_goal, bool):
+                    raise FootstepPlannerError(f"snap_to_goal must be a bool, got {self.snap_to_goal!r}")
+                continue
             _check_field(option.name, getattr(self, option.name), _RANGES[option.name])
         _check_field("min_foot_separation", self.min_foot_separation,
                      FieldRange(self.foot_width, self.nominal_foot_separation, "m"))
