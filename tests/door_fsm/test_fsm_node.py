@@ -1,6 +1,7 @@
 """The supervisor as a process over real DDS, with the test acting as operator and detector."""
 
 import subprocess
+from pathlib import Path
 
 import pytest
 import rclpy
@@ -59,15 +60,20 @@ class Peer:
         return spin_until(self.executor, condition, timeout)
 
 
+def start_supervisor(workspace, log: Path, *overrides: str) -> subprocess.Popen:
+    """The FSM supervisor as a process with its params file and ``name:=value`` overrides."""
+    command = [str(workspace.executable(FSM.package, FSM.executable)), "--ros-args",
+               "--params-file", str(workspace.params_file("fsm_supervisor"))]
+    for override in overrides:
+        command += ["-p", override]
+    return subprocess.Popen(command, env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
+
+
 @pytest.fixture
 def supervisor(workspace, rclpy_context, tmp_path):
     peer = Peer(rclpy_context)
-    log = (tmp_path / "fsm.log").open("w")
-    process = subprocess.Popen(
-        [str(workspace.executable(FSM.package, FSM.executable)), "--ros-args",
-         "--params-file", str(workspace.params_file("fsm_supervisor")),
-         "-p", "approval_timeout:=4.0", "-p", "start_delay:=0.5", "-p", "required_nodes:=['fsm_test_peer']"],
-        env=workspace.environment(), stdout=log, stderr=subprocess.STDOUT)
+    process = start_supervisor(workspace, tmp_path / "fsm.log", "approval_timeout:=4.0", "start_delay:=0.5",
+                               "required_nodes:=['fsm_test_peer']")
     peer.log_path = tmp_path / "fsm.log"
     yield peer
     process.send_signal(2)
@@ -110,11 +116,7 @@ def test_a_killed_node_fails_the_task(workspace, rclpy_context, tmp_path):
                               env=workspace.environment(), stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
     peer = Peer(rclpy_context)
     log = tmp_path / "fsm.log"
-    fsm = subprocess.Popen(
-        [str(workspace.executable(FSM.package, FSM.executable)), "--ros-args",
-         "--params-file", str(workspace.params_file("fsm_supervisor")), "-p", "start_delay:=0.5",
-         "-p", "required_nodes:=['door_detector']"],
-        env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
+    fsm = start_supervisor(workspace, log, "start_delay:=0.5", "required_nodes:=['door_detector']")
     try:
         assert peer.wait(lambda: peer.requests), log.read_text()
         # kill only once the supervisor itself has seen the node (its /diagnostics says so)
@@ -133,11 +135,7 @@ def test_the_task_starts_only_when_the_required_nodes_are_up(workspace, rclpy_co
     """DETECT_DOOR's clock must not run while the graph is still starting."""
     peer = Peer(rclpy_context)
     log = tmp_path / "fsm.log"
-    fsm = subprocess.Popen(
-        [str(workspace.executable(FSM.package, FSM.executable)), "--ros-args",
-         "--params-file", str(workspace.params_file("fsm_supervisor")), "-p", "start_delay:=0.2",
-         "-p", "required_nodes:=['fsm_test_peer', 'fsm_test_late_node']"],
-        env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
+    fsm = start_supervisor(workspace, log, "start_delay:=0.2", "required_nodes:=['fsm_test_peer', 'fsm_test_late_node']")
     late = None
     try:
         assert peer.wait(lambda: any("waiting for fsm_test_late_node" in m for m in peer.messages), 30.0), \
