@@ -11,26 +11,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 
+from door_contract.ranges import FieldRange
 from door_detection.errors import DetectionError
-
-
-@dataclass(frozen=True)
-class FieldRange:
-    """The allowed interval [low, high] of one option (open at ``low`` when flagged)."""
-
-    low: float
-    high: float
-    unit: str
-    low_open: bool = False
-
-    def admits(self, value: float) -> bool:
-        """True when ``value`` lies in the interval."""
-        above = value > self.low if self.low_open else value >= self.low
-        return above and value <= self.high
-
-    def describe(self) -> str:
-        """The interval in words, e.g. ``(0, 1] m``."""
-        return f"{'(' if self.low_open else '['}{self.low:g}, {self.high:g}] {self.unit}".strip()
 
 
 def _ranges() -> dict[str, FieldRange]:
