@@ -66,3 +66,9 @@ def test_options_are_frozen() -> None:
     options = FootstepPlannerOptions()
     with pytest.raises(AttributeError):
         options.max_stride = 0.4  # type: ignore[misc]
+
+
+def test_snap_to_goal_must_be_a_bool() -> None:
+    with pytest.raises(FootstepPlannerError, match="snap_to_goal must be a bool"):
+        FootstepPlannerOptions(snap_to_goal="yes")
+    assert FootstepPlannerOptions(snap_to_goal=True).snap_to_goal
