@@ -72,6 +72,7 @@ class MotionOptions:
     forearm_clearance: float = 0.06  # m, forearm radius + margin to the post
     posture_weight: float = 0.05
     door_stop_lateral: float = 0.10  # m from the base's centreline (hand's side) of the hand stopping a pushed door
+    release_retreat: float = 0.08  # m the hand backs off a pulled door's lever before it swings to walking posture
 
     def __post_init__(self) -> None:
         checks = {"waypoints": (4, 200), "handle_turn": (0.1, HANDLE_LIMITS[1]),
@@ -79,7 +80,7 @@ class MotionOptions:
                   "pregrasp_offset": (0.0, 0.2), "com_margin": (0.0, 0.1), "wall_clearance": (0.0, 0.3),
                   "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "posture_weight": (0.0, 100.0),
                   "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3),
-                  "door_stop_lateral": (0.0, 0.3)}
+                  "door_stop_lateral": (0.0, 0.3), "release_retreat": (0.0, 0.3)}
         for name, (low, high) in checks.items():
             value = getattr(self, name)
             if not (np.isfinite(value) and low <= value <= high):
@@ -350,8 +351,7 @@ def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
                                        _tcp_target_error(setup.chain, _fixed_target(target), POSITION_MASK),
                                        3, [n - 1], m, n)]
     # the other hand still holds the handle: joints both arms share (the torso) must not move
-    other = setup.chain.kinematics.profile.arm(setup.chain.side.other).joints
-    pinned = tuple(name for name in setup.chain.joint_names if name in other)
+    pinned = _shared_with_other_arm(setup.chain)
     problem = _problem(setup, start_chain, options, (False, False), constraints, pinned=pinned)
     q_end = np.clip(_ik(setup.chain, target, start_chain, POSITION_MASK), problem.limits.lower[:setup.chain.size],
                     problem.limits.upper[:setup.chain.size])
@@ -360,14 +360,38 @@ def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
 
 
 def _ready(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
-    """The posture to walk through in. Pull doors: the opening arm back to the profile's
-    walking posture (the other arm blocks the door). Push doors: :func:`_door_stop`."""
+    """The posture to walk through in. Push doors: :func:`_door_stop`. Pull doors: the
+    released hand backs off the lever along the leaf's normal (``release_retreat``), then the
+    arm goes to the profile's walking posture. The other hand blocks the door, so the joints
+    both arms share (the torso) stay where they are: moving them would move the block."""
     if setup.door.push:
         return _door_stop(setup, start_chain, options)
+    n, m = options.waypoints, setup.chain.size + 2
+    pinned = _shared_with_other_arm(setup.chain)
     walking = setup.chain.chain_of(setup.chain.kinematics.walking_q)
-    end = np.concatenate([walking, setup.start_door])
-    problem = _problem(setup, start_chain, options, (False, False), [], end=end)
-    return MotionProblem(problem, problem.linear_interpolation(end), setup.chain)
+    end_chain = np.array([start_chain[i] if name in pinned else walking[i]
+                          for i, name in enumerate(setup.chain.joint_names)])
+    end = np.concatenate([end_chain, setup.start_door])
+    retreat = setup.chain.tcp_pose(start_chain)
+    leaf_normal = setup.door.leaf_rotation(setup.start_door[0]) @ setup.door.normal
+    retreat[:3, 3] += options.release_retreat * leaf_normal
+    t_back = max(1, (n - 1) // 3)
+    constraints = [waypoint_constraint("release_retreat", ConstraintKind.EQUALITY,
+                                       _tcp_target_error(setup.chain, _fixed_target(retreat), POSITION_MASK),
+                                       3, [t_back], m, n)]
+    problem = _problem(setup, start_chain, options, (False, False), constraints, end=end, pinned=pinned)
+    limits = problem.limits
+    q_back = np.clip(solve_ik(setup.chain, retreat, start_chain, IkOptions(max_iterations=60),
+                              mask=POSITION_MASK).chain_q,
+                     limits.lower[:setup.chain.size], limits.upper[:setup.chain.size])
+    guess = _through_keys(problem, [(0, start_chain), (t_back, q_back), (n - 1, end_chain)], setup.start_door)
+    return MotionProblem(problem, guess, setup.chain)
+
+
+def _shared_with_other_arm(chain: ArmChain) -> tuple[str, ...]:
+    """Joints of this chain that the other arm's chain also has (the torso)."""
+    other = chain.kinematics.profile.arm(chain.side.other).joints
+    return tuple(name for name in chain.joint_names if name in other)
 
 
 def _door_stop(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
