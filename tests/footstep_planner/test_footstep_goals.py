@@ -6,15 +6,21 @@ import math
 
 import pytest
 
-from footstep_planner.door import DoorOpening, HingeSide
+from dataclasses import replace
+
+from footstep_planner.astar import FootstepPlanner
+from footstep_planner.door import DoorOpening, HingeSide, wall_obstacles
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.footprint import FootprintChecker
 from footstep_planner.footstep import Stance
-from footstep_planner.goals import replan_needed, stand_pose_for_opening, through_door_pose
+from footstep_planner.footstep import Pose2D
+from footstep_planner.goals import pull_passage_waypoints, replan_needed, stand_pose_for_opening, through_door_pose
+from footstep_planner.legs import plan_legs
 from footstep_planner.options import FootstepPlannerOptions
+from footstep_planner.plan import PlanOutcome
 from footstep_planner.world import World
 
-from footstep_scenes import door_facing_robot
+from footstep_scenes import collisions_along, door_facing_robot, in_front_of, kinematic_violations
 
 OPTIONS = FootstepPlannerOptions()
 
@@ -50,11 +56,68 @@ def test_pull_stand_pose_lies_outside_the_doors_sweep(hinge_side: HingeSide) -> 
     assert normal == pytest.approx(0.5)
 
 
-def test_pull_stand_pose_with_the_body_far_enough_keeps_the_push_offset() -> None:
+def test_pull_stand_pose_far_enough_from_the_plane_is_just_past_the_latch_edge() -> None:
+    """Beyond reach R·sin(sweep angle) + half depth the pulled leaf never reaches the torso:
+    the base stands ``beyond_latch`` past the latch edge, where one hand reaches the handle
+    and the other the gap at the free edge."""
     door = door_facing_robot(DoorOpening.PULL)
-    far = stand_pose_for_opening(door, OPTIONS, reach=1.4)
-    along, _ = door.to_door(far.x, far.y)
-    assert along == pytest.approx(door.leaf_width - door.handle_offset - 0.2)
+    stand = stand_pose_for_opening(door, OPTIONS, reach=0.65, sweep_half_depth=0.15, beyond_latch=0.05)
+    along, normal = door.to_door(stand.x, stand.y)
+    assert (along, normal) == pytest.approx((door.leaf_width + 0.05, 0.65))
+    torso = replace(OPTIONS, body_half_depth=0.15 - OPTIONS.body_margin)
+    pulled = World((World.from_door(door, sweep=(0.0, 0.45)).obstacles[-1],))
+    body = Stance.nominal(stand, OPTIONS.nominal_foot_separation)
+    assert FootprintChecker(pulled, torso).stance_collision(body) is None
+    # 5 cm closer to the door the leaf would reach the torso: the pose moves beside the arc
+    near = stand_pose_for_opening(door, OPTIONS, reach=0.55, sweep_half_depth=0.15)
+    assert door.to_door(near.x, near.y)[0] > door.leaf_width + 0.3
+
+
+@pytest.mark.parametrize("hinge_side", list(HingeSide))
+def test_pull_passage_turns_towards_the_hinge_then_walks_through(hinge_side: HingeSide) -> None:
+    door = door_facing_robot(DoorOpening.PULL, hinge_side=hinge_side)
+    stand = stand_pose_for_opening(door, OPTIONS, reach=0.65, sweep_half_depth=0.15)
+    turn, along_wall, facing, through = pull_passage_waypoints(door, stand)
+    hinge_x, hinge_y = door.hinge_x, door.hinge_y
+    # the turn keeps the stand position and looks along the wall at the hinge
+    assert (turn.x, turn.y) == pytest.approx((stand.x, stand.y))
+    heading = (math.cos(turn.yaw), math.sin(turn.yaw))
+    assert heading[0] * (hinge_x - stand.x) + heading[1] * (hinge_y - stand.y) > 0.5
+    assert door.to_door(along_wall.x, along_wall.y) == pytest.approx((door.clear_opening / 2.0, 0.65))
+    assert facing.yaw == pytest.approx(door.facing_yaw)
+    assert door.to_door(through.x, through.y)[1] == pytest.approx(-1.0)
+
+
+def test_legs_join_into_one_alternating_collision_free_plan() -> None:
+    door = door_facing_robot(DoorOpening.PULL, leaf_width=0.914, clear_opening=0.87, handle_offset=0.136)
+    options = replace(OPTIONS, snap_to_goal=True, heuristic_weight=1.5)
+    stand = stand_pose_for_opening(door, options, reach=0.65, sweep_half_depth=0.15)
+    waypoints = pull_passage_waypoints(door, stand)
+    world = World(wall_obstacles(door))
+    result = plan_legs(FootstepPlanner(world, options), Stance.nominal(stand, options.nominal_foot_separation),
+                       waypoints)
+    assert result.succeeded, result.reason
+    steps = result.plan.steps
+    assert all(a.foot is not b.foot for a, b in zip(steps, steps[1:]))
+    assert collisions_along(result.plan, world) == [] and kinematic_violations(result.plan) == []
+    final = result.plan.final_stance.body_pose
+    assert final.distance_to(waypoints[-1]) < 1e-9
+    # it did turn in place first: some stance faces along the wall before any goes past it
+    stances = result.plan.stances()
+    first_turned = next(i for i, s in enumerate(stances) if abs(s.body_pose.yaw_difference(waypoints[0])) < 0.05)
+    assert all(door.to_door(s.body_pose.x, s.body_pose.y)[1] > 0.3 for s in stances[:first_turned + 1])
+
+
+def test_a_failing_leg_names_itself() -> None:
+    door = door_facing_robot(DoorOpening.PULL)
+    world = World(wall_obstacles(door))
+    inside_wall = Pose2D(*door.to_world(-1.0, 0.0), 0.0)
+    stand = in_front_of(door, 1.0)
+    result = plan_legs(FootstepPlanner(world, OPTIONS), Stance.nominal(stand, OPTIONS.nominal_foot_separation),
+                       (stand, inside_wall))
+    assert not result.succeeded and result.reason.startswith("leg 2 of 2:")
+    assert plan_legs(FootstepPlanner(world, OPTIONS), Stance.nominal(stand, 0.2), ()).outcome \
+        is PlanOutcome.INVALID_GOAL
 
 
 def test_through_door_pose_is_centred_one_metre_beyond() -> None:

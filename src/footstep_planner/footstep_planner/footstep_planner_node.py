@@ -31,10 +31,12 @@ from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus,
 from door_contract.topics import Topics
 from door_robot.profile import load_profile
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide
+from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide, wall_obstacles
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
-from footstep_planner.goals import replan_needed, stand_pose_for_opening, through_door_pose
+from footstep_planner.goals import (pull_passage_waypoints, replan_needed, stand_pose_for_opening,
+                                   through_door_pose)
+from footstep_planner.legs import plan_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import NODE_NAME, PLANNER_PARAMETERS
 from footstep_planner.plan import FootstepPlan, PlanResult
@@ -101,8 +103,6 @@ class FootstepPlannerNode(Node):
         self.get_logger().info(f"ready: {self.parameters['robot_profile']} steps ≤ {self.options.max_stride} m, "
                                f"heuristic weight {self.options.heuristic_weight}")
 
-
-
     def _on_request(self, msg: String) -> None:
         try:
             request = decode(FootstepRequest, msg.data)
@@ -110,8 +110,8 @@ class FootstepPlannerNode(Node):
             self.get_logger().warning(f"footstep request rejected: {error}")
             return
         try:
-            start, goal, world = self._problem(request)
-            result = self._plan(world, start, goal, self._options_for(request.goal))
+            start, waypoints, world = self._problem(request)
+            result = self._plan(world, start, waypoints, self._options_for(request.goal, len(waypoints)))
         except (RequestRefused, FootstepPlannerError, ValueError) as error:
             self._answer(request, OutcomeStatus.REJECTED, str(error))
             return
@@ -129,24 +129,30 @@ class FootstepPlannerNode(Node):
         path.header.stamp = self.get_clock().now().to_msg()
         self.plan_pub.publish(path)
         self.marker_pub.publish(footstep_markers(placements, self.options))
+        goal = waypoints[-1]
         length = float(np.hypot(goal.x - start.left.x / 2 - start.right.x / 2, goal.y - start.left.y / 2 - start.right.y / 2))
         self._answer(request, OutcomeStatus.SUCCESS, "", result.planning_time,
                      {"stamp_ns": stamp_ns(path.header.stamp), "steps": len(result.plan.steps), "length_m": round(length, 3),
                       "expansions": result.expansions})
 
-    def _options_for(self, goal: str) -> FootstepPlannerOptions:
+    def _options_for(self, goal: str, legs: int) -> FootstepPlannerOptions:
         """The stand pose is where the arm must reach the handle: the walk ends exactly on it
         (snap_to_goal; 4 cm and 3.8° off, within the search's goal tolerance, made a turn
-        unreachable). The passage keeps the search's tolerance."""
-        return replace(self.options, snap_to_goal=True) if goal == "stand" else self.options
+        unreachable). So do the legs of a walk through waypoints (the pull door's turns
+        sweep the door open). A plain passage keeps the search's tolerance."""
+        return replace(self.options, snap_to_goal=True) if goal == "stand" or legs > 1 else self.options
 
-    def _plan(self, world: World, start: Stance, goal: Pose2D, options: FootstepPlannerOptions) -> PlanResult:
-        result, relaxed_from = FootstepPlanner(world, options).plan_from_within_margins(start, goal)
+    def _plan(self, world: World, start: Stance, waypoints: tuple[Pose2D, ...],
+              options: FootstepPlannerOptions) -> PlanResult:
+        if len(waypoints) > 1:
+            return plan_legs(FootstepPlanner(world, options), start, waypoints)
+        result, relaxed_from = FootstepPlanner(world, options).plan_from_within_margins(start, waypoints[0])
         if relaxed_from:
             self.get_logger().warning(f"{relaxed_from}: planned once more without safety margins")
         return result
 
-    def _problem(self, request: FootstepRequest) -> tuple[Stance, Pose2D, World]:
+    def _problem(self, request: FootstepRequest) -> tuple[Stance, tuple[Pose2D, ...], World]:
+        """Start stance, the body poses to walk through in order, and the obstacles."""
         if self.inputs.base_pose is None:
             raise RequestRefused("no valid odometry yet")
         estimate = self.inputs.doors.pick(request.door_stamp, request.door)
@@ -159,18 +165,26 @@ class FootstepPlannerNode(Node):
         start = self._start_stance(body)
         door = self._door_geometry(request, estimate)
         if request.goal == "stand":
-            sweep = (0.0, math.pi / 2) if door.opening is DoorOpening.PULL else None
-            reach = self.parameters["stand_reach_pull" if door.opening is DoorOpening.PULL else "stand_reach"]
-            goal = stand_pose_for_opening(door, self.options, reach=reach,
-                                          handle_offset=self.parameters["stand_handle_offset"],
-                                          sweep_half_depth=self.parameters["pull_sweep_half_depth"])
-            return start, goal, World.from_door(door, sweep)
+            # the door is shut while the robot walks there; the stand pose itself keeps the
+            # torso out of the pulled leaf's swing (the walking grippers would touch it)
+            return start, (self._stand_pose(door),), World.from_door(door)
+        if door.opening is DoorOpening.PULL:  # the other hand blocks the leaf; the walk sweeps it open
+            return start, pull_passage_waypoints(door, self._stand_pose(door), self.parameters["beyond_door"]), \
+                World(wall_obstacles(door))
         angle = max(request.door_angle, self.parameters["passage_door_angle"])
         if self.passage_angle is not None and replan_needed(self.passage_angle, angle):
             self.get_logger().info(f"door angle changed {self.passage_angle:.2f} → {angle:.2f} rad: re-planning")
         self.passage_angle = angle
         door = door.with_angle(angle)
-        return start, through_door_pose(door, self.parameters["beyond_door"]), World.from_door(door)
+        return start, (through_door_pose(door, self.parameters["beyond_door"]),), World.from_door(door)
+
+    def _stand_pose(self, door: DoorGeometry) -> Pose2D:
+        pull = door.opening is DoorOpening.PULL
+        return stand_pose_for_opening(door, self.options, reach=self.parameters["stand_reach_pull" if pull else "stand_reach"],
+                                      handle_offset=self.parameters["stand_handle_offset"],
+                                      sweep_half_depth=self.parameters["pull_sweep_half_depth"],
+                                      pull_sweep_angle=self.parameters["pull_sweep_angle"],
+                                      beyond_latch=self.parameters["pull_stand_beyond_latch"])
 
     def _start_stance(self, body: Pose2D) -> Stance:
         """The feet: measured (/feet) when the robot reports them; else where the last plan

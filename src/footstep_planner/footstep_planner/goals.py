@@ -21,57 +21,85 @@ DEFAULT_HANDLE_OFFSET = 0.20
 """Lateral distance from the base to the handle (m): puts it before the handle-side shoulder."""
 DEFAULT_SWEEP_CLEARANCE = 0.05
 """Gap kept between the robot's footprint and a pull door's swing (m)."""
+DEFAULT_PULL_SWEEP_ANGLE = 0.45
+"""How far a pull door swings while the robot pulls it (rad): the pull's 0.35 rad and a margin."""
+DEFAULT_BEYOND_LATCH = 0.05
+"""Base past a pull door's latch edge along the wall (m), between the handle and the gap."""
 
 
 def stand_pose_for_opening(door: DoorGeometry, options: FootstepPlannerOptions,
                            reach: float = DEFAULT_REACH,
                            handle_offset: float = DEFAULT_HANDLE_OFFSET,
                            sweep_clearance: float = DEFAULT_SWEEP_CLEARANCE,
-                           sweep_half_depth: float | None = None) -> Pose2D:
+                           sweep_half_depth: float | None = None,
+                           pull_sweep_angle: float = DEFAULT_PULL_SWEEP_ANGLE,
+                           beyond_latch: float = DEFAULT_BEYOND_LATCH) -> Pose2D:
     """Where the robot stands, facing the door, to grasp and open it.
 
     The base stands ``reach`` m in front of the door plane (s = reach).
-    Along the wall it stands ``handle_offset`` m on the hinge side of the
-    handle (u = u_handle - handle_offset, u_handle = leaf width - the
-    handle's distance from the free edge), so it is shifted from the
-    doorway's centre towards the handle side and the handle is in front of
-    the handle-side arm.
 
-    A PULL door swings towards the robot through the quarter disc of radius
-    W (leaf width) about the hinge.  The robot's footprint (the body
-    rectangle, which contains both soles) must stay outside it: facing the
-    door, the footprint's corner nearest the hinge is at
-    (u - half_width, reach - half_depth), so it needs
+    PUSH doors: along the wall it stands ``handle_offset`` m on the hinge side of the
+    handle (u = u_handle - handle_offset, u_handle = leaf width - the handle's distance
+    from the free edge), so the handle is in front of the handle-side arm.
 
-        (u - half_width)^2 + (reach - half_depth)^2 >= (W + clearance)^2,
-
-    i.e. u >= half_width + sqrt((W + clearance)^2 - (reach - half_depth)^2):
-    beside the handle side, further from the hinge than the door is wide.
-    ``sweep_half_depth`` replaces half_depth there when given: while opening, the arms
-    are on the handle, and what the leaf must miss is the torso, not the walking
-    posture's grippers.
+    PULL doors (seed 001 Fig. 2: pull with one hand, block with the other): the base
+    stands ``beyond_latch`` m past the latch edge (u = W + beyond_latch). The hinge-side
+    hand reaches the handle; the other hand reaches the gap that opens at the free edge,
+    to go behind the leaf; and from there the robot can turn towards the hinge and sweep
+    the leaf open (:func:`pull_passage_waypoints`). The leaf swings towards the robot
+    through the sector of radius R = W + thickness + clearance up to
+    ``pull_sweep_angle``, which the footprint (``sweep_half_depth`` deep ahead of the
+    base when given: while opening, the arms are on the handle) must miss: with
+    near = reach - half_depth, the sector never reaches the footprint's near face when
+    near >= R sin(angle); otherwise the footprint must be beside the whole arc,
+    u - half_width >= sqrt(R^2 - near^2).
     """
     check_range("reach", reach, FieldRange(0.2, 1.5, "m"))
     check_range("handle_offset", handle_offset, FieldRange(-1.0, 1.0, "m"))
     check_range("sweep_clearance", sweep_clearance, FieldRange(0.0, 0.5, "m"))
+    check_range("pull_sweep_angle", pull_sweep_angle, FieldRange(0.0, math.pi / 2, "rad", low_open=True))
+    check_range("beyond_latch", beyond_latch, FieldRange(-0.5, 1.0, "m"))
     along = door.leaf_width - door.handle_offset - handle_offset
     if door.opening is DoorOpening.PULL:
-        along = max(along, _outside_sweep(door, options, reach, sweep_clearance, sweep_half_depth))
+        along = max(door.leaf_width + beyond_latch,
+                    _outside_sweep(door, options, reach, sweep_clearance, sweep_half_depth, pull_sweep_angle))
     x, y = door.to_world(along, reach)
     return Pose2D(x, y, door.facing_yaw)
 
 
 def _outside_sweep(door: DoorGeometry, options: FootstepPlannerOptions, reach: float,
-                   clearance: float, sweep_half_depth: float | None) -> float:
+                   clearance: float, sweep_half_depth: float | None, sweep_angle: float) -> float:
     """Smallest u that keeps the footprint, facing the door at s = reach, out of the swing."""
     half_width, half_depth = _footprint_half_extents(options)
     if sweep_half_depth is not None:
         half_depth = sweep_half_depth
     radius = door.leaf_width + door.leaf_thickness + clearance
     near_face = reach - half_depth
-    if near_face >= radius:
+    if near_face >= radius * math.sin(sweep_angle):
         return -math.inf
     return half_width + math.sqrt(radius * radius - max(near_face, 0.0) ** 2)
+
+
+def pull_passage_waypoints(door: DoorGeometry, stand: Pose2D, distance_beyond: float = 1.0) -> tuple[Pose2D, ...]:
+    """Body poses through a PULL door that the other hand blocks (seed 001 Fig. 2).
+
+    From the stand pose beside the latch edge, with the blocking hand behind the leaf near
+    its free edge: (1) turn in place to face along the wall towards the hinge: the hand
+    sweeps round and pushes the leaf open (to ~1 rad in the simulation); (2) walk along
+    the wall to the opening's centre line, the hand pushing the leaf further; (3) turn to
+    face the doorway: the leaf comes to rest on the body's hinge side; (4) walk through
+    (:func:`through_door_pose`) while the leaf slides along the body and closes behind it.
+    The leaf is not an obstacle of these legs (the robot pushes it); wall and posts are.
+    """
+    check_range("distance_beyond", distance_beyond, FieldRange(0.0, 10.0, "m", low_open=True))
+    _, reach = door.to_door(stand.x, stand.y)
+    latch_x, latch_y = door.latch_direction
+    towards_hinge = math.atan2(-latch_y, -latch_x)
+    centre_x, centre_y = door.to_world(door.clear_opening / 2.0, reach)
+    return (Pose2D(stand.x, stand.y, towards_hinge),
+            Pose2D(centre_x, centre_y, towards_hinge),
+            Pose2D(centre_x, centre_y, door.facing_yaw),
+            through_door_pose(door, distance_beyond))
 
 
 def _footprint_half_extents(options: FootstepPlannerOptions) -> tuple[float, float]:

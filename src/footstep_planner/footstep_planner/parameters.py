@@ -12,8 +12,12 @@ PLANNER_PARAMETERS = (
     ParameterSpec("max_planning_time", 2.0, "bound on planning time", unit="s", minimum=0.01, maximum=60.0),
     ParameterSpec("stand_reach", 0.50, "base to door plane when opening a push door", unit="m",
                   minimum=0.2, maximum=1.5),
-    ParameterSpec("stand_reach_pull", 0.75, "base to door plane when opening a pull door (room to pull "
+    ParameterSpec("stand_reach_pull", 0.65, "base to door plane when opening a pull door (room to pull "
                   "the handle towards the robot)", unit="m", minimum=0.2, maximum=1.5),
+    ParameterSpec("pull_sweep_angle", 0.45, "how far a pull door swings while pulled, kept clear of the "
+                  "torso at the stand pose", unit="rad", minimum=0.05, maximum=1.57),
+    ParameterSpec("pull_stand_beyond_latch", 0.05, "base past a pull door's latch edge along the wall "
+                  "(one hand pulls, the other blocks the gap)", unit="m", minimum=-0.5, maximum=1.0),
     ParameterSpec("pull_sweep_half_depth", 0.15, "how far the torso reaches ahead of the base, kept out "
                   "of a pull door's swing (the arms are on the handle)", unit="m", minimum=0.05, maximum=0.5),
     ParameterSpec("stand_handle_offset", 0.20, "base to handle along the wall, towards the hinge",

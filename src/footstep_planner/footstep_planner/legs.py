@@ -1,0 +1,47 @@
+"""A walk through several body poses in order: one A* search per leg, joined into one plan.
+
+Used where the order of the poses matters and a single search would cut the corner, as in
+the pull door's passage (:func:`~footstep_planner.goals.pull_passage_waypoints`): the turn
+in place is what sweeps the door open.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Sequence
+
+from footstep_planner.astar import FootstepPlanner
+from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from footstep_planner.plan import FootstepPlan, PlanOutcome, PlanResult
+
+
+def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2D]) -> PlanResult:
+    """Plan start → waypoints[0] → … → waypoints[-1]; each leg starts from the stance the
+    previous one ended in. The feet keep alternating across legs: when a leg would begin
+    with the foot that ended the previous one, the other foot first steps in place.
+
+    The first leg that fails ends the request with its outcome, its reason prefixed by
+    the leg's number; expansions and time are totals over the legs planned.
+    """
+    started = time.perf_counter()
+    if not waypoints:
+        return PlanResult(PlanOutcome.INVALID_GOAL, "no waypoints to walk through", None, 0, 0.0)
+    stance, steps, cost, expansions = start, [], 0.0, 0
+    for number, waypoint in enumerate(waypoints, start=1):
+        result = planner.plan(stance, waypoint)
+        expansions += result.expansions
+        if not result.succeeded:
+            return PlanResult(result.outcome, f"leg {number} of {len(waypoints)}: {result.reason}", None,
+                              expansions, time.perf_counter() - started)
+        steps.extend(_alternating(steps, stance, result.plan.steps))
+        stance, cost = result.plan.final_stance, cost + result.plan.cost
+    elapsed = time.perf_counter() - started
+    plan = FootstepPlan(start, waypoints[-1], tuple(steps), cost, expansions, elapsed)
+    return PlanResult(PlanOutcome.SUCCESS, "", plan, expansions, elapsed)
+
+
+def _alternating(done: list[Footstep], stance: Stance, leg: tuple[Footstep, ...]) -> list[Footstep]:
+    """``leg`` with a step in place of the other foot first if it would repeat the last foot."""
+    if done and leg and leg[0].foot is done[-1].foot:
+        return [stance.left if leg[0].foot.other is Foot.LEFT else stance.right, *leg]
+    return list(leg)
