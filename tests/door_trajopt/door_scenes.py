@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from door_contract.payloads import DoorEstimate, HingeSide
@@ -14,14 +12,13 @@ from door_sim_bridge.world import HingeSide as SimHingeSide
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.motions import MotionSetup, support_polygon
-from footstep_planner.door import DoorGeometry
 from footstep_planner.door import DoorOpening as PlannerOpening
-from footstep_planner.door import HingeSide as PlannerHinge
-from footstep_planner.footstep_planner_node import planner_options
+from footstep_planner.footstep_planner_node import door_geometry_from_estimate, planner_options
+from footstep_planner.parameters import PLANNER_PARAMETERS
 from footstep_planner.goals import stand_pose_for_opening
 
 
-PULL_SWEEP_HALF_DEPTH = 0.15  # the footstep planner node's default
+PLANNER_DEFAULTS = {spec.name: spec.default for spec in PLANNER_PARAMETERS}
 
 
 def estimate_from_world(world: DoorWorld) -> DoorEstimate:
@@ -33,18 +30,24 @@ def estimate_from_world(world: DoorWorld) -> DoorEstimate:
 
 
 def stand_world(opening: DoorOpening = DoorOpening.PUSH, hinge: SimHingeSide = SimHingeSide.LEFT,
-                reach: float = 0.5, handle_offset: float = 0.2) -> DoorWorld:
-    """The robot where the footstep planner's stand pose puts it for this door (facing it,
-    ``reach`` m from its plane; for pull doors outside the leaf's sweep)."""
-    door = DoorConfig(opening=opening, hinge_side=hinge)
+                **door_fields: float) -> DoorWorld:
+    """The robot where the footstep planner node (default parameters) puts it to open this
+    door (``door_fields``: other DoorConfig values): facing it, for pull doors just past the
+    latch edge and out of the pulled leaf."""
+    door = DoorConfig(opening=opening, hinge_side=hinge, **door_fields)
     probe = DoorWorld(WorldConfig(door=door))
     estimate = estimate_from_world(probe)
     probe.close()
     options = planner_options("talos", {"heuristic_weight": 1.0, "max_expansions": 1000, "max_planning_time": 1.0})
-    geometry = DoorGeometry.from_handle(estimate.handle_position[0] + 0.06, estimate.handle_position[1], math.pi,
-                                        PlannerHinge(hinge.value), PlannerOpening(opening.value))
-    stand = stand_pose_for_opening(geometry, options, reach=reach, handle_offset=handle_offset,
-                                   sweep_half_depth=PULL_SWEEP_HALF_DEPTH)
+    geometry = door_geometry_from_estimate(estimate, PlannerOpening(opening.value), 0.0,
+                                           PLANNER_DEFAULTS["handle_standoff"])
+    pull = opening is DoorOpening.PULL
+    stand = stand_pose_for_opening(geometry, options,
+                                   reach=PLANNER_DEFAULTS["stand_reach_pull" if pull else "stand_reach"],
+                                   handle_offset=PLANNER_DEFAULTS["stand_handle_offset"],
+                                   sweep_half_depth=PLANNER_DEFAULTS["pull_sweep_half_depth"],
+                                   pull_sweep_angle=PLANNER_DEFAULTS["pull_sweep_angle"],
+                                   beyond_latch=PLANNER_DEFAULTS["pull_stand_beyond_latch"])
     return DoorWorld(WorldConfig(door=door, stance=StanceConfig(distance=-stand.x, lateral_offset=stand.y)))
 
 

@@ -9,6 +9,7 @@ import pytest
 from door_robot.profile import Side
 from door_sim_bridge.execution import TrajectoryExecution
 from door_sim_bridge.world import DoorOpening
+from door_sim_bridge.world import HingeSide as SimHingeSide
 from door_trajopt.door_model import rotation_vector
 from door_trajopt.library import Backend, MotionLibrary
 from door_trajopt.chomp import ChompSolver
@@ -158,3 +159,37 @@ def test_push_never_swings_the_door_past_its_goal(scene, approach):
         hinge = push.result.trajectory[:, k]
         assert hinge.max() <= library.options.push_angle + 1e-6
         assert hinge[-1] == pytest.approx(library.options.push_angle, abs=1e-6)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("hinge", list(SimHingeSide))
+def test_pulled_door_is_blocked_by_the_other_hand_when_the_first_lets_go(hinge):
+    """Seed 001 Fig. 2: pull with the hinge-side hand, insert the other hand behind the leaf,
+    release the handle and bring the arm to the walking posture: the door stays open on the
+    blocking hand instead of closing (closer ~5 N·m at 0.35 rad)."""
+    world = stand_world(DoorOpening.PULL, hinge)
+    kinematics, library = talos_kinematics(), MotionLibrary()
+    estimate = estimate_from_world(world)
+    pulling = Side(estimate.hinge_side.grasp_hand("pull"))
+    door_angle = 0.0
+    try:
+        for motion in (Motion.APPROACH_HANDLE, "grasp", Motion.TURN_HANDLE, Motion.PULL_DOOR, Motion.BLOCK_DOOR,
+                       "release", Motion.READY_TO_WALK):
+            if motion in ("grasp", "release"):
+                assert world.grasp(pulling, motion == "grasp").success
+                continue
+            side = pulling.other if motion.uses_other_arm else pulling
+            setup = motion_setup(world, kinematics, estimate, side=side,
+                                 door_angles=start_door_for(motion, door_angle, library.options))
+            plan = library.plan(motion, setup, setup.chain.chain_of(setup.chain.body_q))
+            assert plan.succeeded, f"{motion.value}: {plan.result.message}"
+            result = TrajectoryExecution.from_joint_path(world, plan.path).run()
+            assert result.status.value == "success", f"{motion.value}: {result.reason}"
+            door_angle = plan.final_door[0]
+        world.step(480)  # 2 s more: a door that the block did not hold would have shut by now
+        state = world.door_state()
+        assert not world.holding(pulling)
+        assert 0.3 < state.hinge_angle < 0.45  # pulled to 0.35 rad, resting on the blocking hand
+        assert world.scene_penetration() < 0.01
+    finally:
+        world.close()

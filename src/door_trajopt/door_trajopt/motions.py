@@ -68,8 +68,12 @@ class MotionOptions:
     wall_clearance: float = 0.04  # m, elbow in front of the door plane
     lever_standoff: float = 0.06  # m, door face behind the grasp point
     block_inset: float = 0.10  # m from the free edge where the other hand blocks the door
+    block_entry: float = 0.10  # m beyond the free edge where the blocking hand comes first
+    block_standoff: float = 0.14  # m from the leaf's robot-side face to the blocking TCP, behind it
+    # (leaf 0.04 m thick + the gripper's body: at 0.11 m the gripper pressed on the leaf)
     post_inset: float = 0.022  # m, the latch-side post's face inside the leaf's free edge (0.87 m clear)
     forearm_clearance: float = 0.06  # m, forearm radius + margin to the post
+    head_clearance: float = 0.15  # m from the head camera to a pulled leaf's plane (head radius + margin)
     posture_weight: float = 0.05
     door_stop_lateral: float = 0.10  # m from the base's centreline (hand's side) of the hand stopping a pushed door
     release_retreat: float = 0.08  # m the hand backs off a pulled door's lever before it swings to walking posture
@@ -78,8 +82,8 @@ class MotionOptions:
         checks = {"waypoints": (4, 200), "handle_turn": (0.1, HANDLE_LIMITS[1]),
                   "push_angle": (0.05, HINGE_LIMITS[1]), "pull_angle": (0.05, HINGE_LIMITS[1]),
                   "pregrasp_offset": (0.0, 0.2), "com_margin": (0.0, 0.1), "wall_clearance": (0.0, 0.3),
-                  "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "posture_weight": (0.0, 100.0),
-                  "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3),
+                  "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "block_entry": (0.0, 0.5), "block_standoff": (0.0, 0.5), "posture_weight": (0.0, 100.0),
+                  "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3), "head_clearance": (0.0, 0.5),
                   "door_stop_lateral": (0.0, 0.3), "release_retreat": (0.0, 0.3)}
         for name, (low, high) in checks.items():
             value = getattr(self, name)
@@ -210,6 +214,33 @@ def _doorway_clearance(setup: MotionSetup, options: MotionOptions):
     return function
 
 
+def _head_clearance(setup: MotionSetup, options: MotionOptions):
+    """A pulled leaf swings towards the head (bent over a low handle, TALOS's head met the
+    leaf and the grasp slipped): g = clearance − (p_head − p_hinge)·n(θ) ≤ 0, with
+    n(θ) = R(θ)n the leaf's robot-side normal at the waypoint's hinge angle θ, and
+    ∂n/∂θ = s·(z × n(θ)) (s the hinge sign). Conservative beyond the free edge: it keeps
+    the head off the leaf's whole plane."""
+    k, frame = setup.chain.size, setup.chain.kinematics.profile.head_camera_frame
+    door = setup.door
+
+    def function(q: np.ndarray, need_jacobian: bool):
+        point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
+        normal = door.leaf_rotation(q[k]) @ door.normal
+        offset = point - door.hinge_point
+        value = np.array([options.head_clearance - offset @ normal])
+        d_normal = door.hinge_sign * np.cross(np.array([0.0, 0.0, 1.0]), normal)
+        return value, np.concatenate([-(normal @ jacobian), [-(offset @ d_normal), 0.0]])[None, :]
+    return function
+
+
+def _pull_head_clearance(setup: MotionSetup, options: MotionOptions, m: int, n: int) -> list:
+    """The head clearance at every moving waypoint, for pull doors only."""
+    if setup.door.push:
+        return []
+    return [waypoint_constraint("head_clearance", ConstraintKind.INEQUALITY, _head_clearance(setup, options), 1,
+                                range(1, n), m, n)]
+
+
 # --------------------------------------------------------------------- problem assembly
 def _limits(setup: MotionSetup, door_moves: tuple[bool, bool], start_chain: np.ndarray,
             pinned: tuple[str, ...] = ()) -> JointLimits:
@@ -333,29 +364,39 @@ def _swing(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
         if setup.door.push:  # the forearm goes through the doorway with the door
             constraints.append(waypoint_constraint("doorway_clearance", ConstraintKind.INEQUALITY,
                                                    _doorway_clearance(setup, options), 2, range(1, n), m, n))
-        return constraints
+        return constraints + _pull_head_clearance(setup, options, m, n)
     return _closed_chain(setup, start_chain, options, path, (True, False), extra)
 
 
 def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
-    """The other hand goes behind the opened leaf near its free edge (position only)."""
+    """The other hand goes behind the opened leaf near its free edge (seed 001 Sec. IV-4:
+    "a target position behind the door which can be defined according to the position of
+    the door handle"; position only). It first comes to ``block_entry`` beyond the free
+    edge, level with its final place, and slides in behind the leaf from there: straight
+    from the start, the gripper met the leaf's edge."""
     n, m = options.waypoints, setup.chain.size + 2
     door = setup.door
-    theta = setup.start_door[0]
-    leaf = door.leaf_rotation(theta)
-    edge = door.hinge_point + leaf @ ((setup.door_width - options.block_inset) * door.along)
-    behind = leaf @ (-door.normal) * (options.lever_standoff + 0.05)  # the side the door closes towards
-    target = np.eye(4)
-    target[:3, 3] = edge + behind
-    constraints = [waypoint_constraint("block_position", ConstraintKind.EQUALITY,
-                                       _tcp_target_error(setup.chain, _fixed_target(target), POSITION_MASK),
-                                       3, [n - 1], m, n)]
+    leaf = door.leaf_rotation(setup.start_door[0])
+    behind = leaf @ (-door.normal) * options.block_standoff  # the side the door closes towards
+
+    def beside_leaf(along: float) -> np.ndarray:
+        target = np.eye(4)
+        target[:3, 3] = door.hinge_point + leaf @ (along * door.along) + behind
+        return target
+    entry = beside_leaf(setup.door_width + options.block_entry)
+    target = beside_leaf(setup.door_width - options.block_inset)
+    t_entry = max(1, int(round(0.6 * (n - 1))))
+    constraints = [waypoint_constraint(name, ConstraintKind.EQUALITY,
+                                       _tcp_target_error(setup.chain, _fixed_target(pose), POSITION_MASK), 3, [t], m, n)
+                   for name, pose, t in (("block_entry", entry, t_entry), ("block_position", target, n - 1))]
+    constraints += _pull_head_clearance(setup, options, m, n)
     # the other hand still holds the handle: joints both arms share (the torso) must not move
     pinned = _shared_with_other_arm(setup.chain)
     problem = _problem(setup, start_chain, options, (False, False), constraints, pinned=pinned)
-    q_end = np.clip(_ik(setup.chain, target, start_chain, POSITION_MASK), problem.limits.lower[:setup.chain.size],
-                    problem.limits.upper[:setup.chain.size])
-    guess = _through_keys(problem, [(0, start_chain), (n - 1, q_end)], setup.start_door)
+    lower, upper = problem.limits.lower[:setup.chain.size], problem.limits.upper[:setup.chain.size]
+    q_entry = np.clip(_ik(setup.chain, entry, start_chain, POSITION_MASK), lower, upper)
+    q_end = np.clip(solve_ik(setup.chain, target, q_entry, mask=POSITION_MASK).chain_q, lower, upper)
+    guess = _through_keys(problem, [(0, start_chain), (t_entry, q_entry), (n - 1, q_end)], setup.start_door)
     return MotionProblem(problem, guess, setup.chain)
 
 
