@@ -1,6 +1,7 @@
-"""The main job end to end: the whole graph as separate processes over real DDS, a push
-door under supervised autonomy with a scripted operator approving, recorded to a rosbag;
-then the recorded camera topics replayed into a fresh detector reproduce its estimate."""
+"""The main job end to end: the whole graph as separate processes over real DDS, under
+supervised autonomy with a scripted operator approving: a push door, recorded to a rosbag
+(then the recorded camera topics replayed into a fresh detector reproduce its estimate),
+and a pull door."""
 
 import subprocess
 
@@ -29,6 +30,14 @@ def push_run(workspace, tmp_path_factory):
     return run_dir, report
 
 
+@pytest.fixture(scope="module")
+def pull_run(workspace, tmp_path_factory):
+    run_dir = tmp_path_factory.mktemp("pull_run")
+    options = TaskOptions(opening="pull", hinge="right", autonomy="supervised", operator="auto",
+                          timeout_s=600.0, record=False)
+    return run_task(options, run_dir, workspace)
+
+
 def _messages(bag, topic):
     return [deserialize_message(m.data, topic.msg_class()) for m in read_messages(bag, [topic.name])]
 
@@ -46,6 +55,18 @@ def test_push_door_is_traversed(push_run):
     assert any(text.startswith("DETECT_DOOR") for text in approvals)  # supervised: the operator was asked
     door = _messages(run_dir / "bag", Topics.DOOR_JOINT_STATES)
     assert max(d.position[0] for d in door) > 0.15  # the hinge opened
+
+
+def test_pull_door_is_pulled_blocked_and_traversed(pull_run):
+    """Seed 001 Fig. 2: pull with the hinge-side hand, block with the other, walk through."""
+    report = pull_run
+    assert report["final_state"] == "DONE", report["failure_reason"]
+    states = [a["state"] for a in report["attempts"] if a["outcome"] == "succeeded"]
+    for state in ("WALK_TO_DOOR", "OPEN_DOOR/PULL", "OPEN_DOOR/BLOCK", "OPEN_DOOR/READY_TO_WALK", "WALK_THROUGH"):
+        assert state in states
+    assert "OPEN_DOOR/PUSH" not in states
+    assert all(code == 0 for code in report["exit_codes"].values()), report["exit_codes"]
+    assert report["final_base_xy"][0] > 0.5  # beyond the wall plane at x = 0
 
 
 def test_recorded_camera_replayed_into_a_detector_reproduces_its_estimate(push_run, workspace, rclpy_context):

@@ -23,6 +23,7 @@ from datetime import datetime, timezone
 from pathlib import Path
 
 import rclpy
+from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from std_msgs.msg import String
 
@@ -79,11 +80,14 @@ def _ros_args(values: dict) -> list[str]:
 
 
 class ScriptedOperator(Node):
-    """The operator of the main job: approves every request and collects the TaskReport."""
+    """The operator of the main job: approves every request and collects the TaskReport
+    and where the robot's base ended (odom, m)."""
 
     def __init__(self, approve: bool) -> None:
         super().__init__("door_task_operator")
         self.approve, self.report, self.states = approve, None, []
+        self.base_xy: tuple[float, float] | None = None
+        create_contract_subscription(self, Topics.ODOM, self._on_odom)
         self.command_pub = create_contract_publisher(self, Topics.OPERATOR)
         create_contract_subscription(self, Topics.APPROVAL_REQUEST, self._on_request)
         create_contract_subscription(self, Topics.TASK_STATE, self._on_state)
@@ -103,6 +107,9 @@ class ScriptedOperator(Node):
 
     def _on_report(self, msg: String) -> None:
         self.report = decode(TaskReport, msg.data)
+
+    def _on_odom(self, msg: Odometry) -> None:
+        self.base_xy = (round(msg.pose.pose.position.x, 3), round(msg.pose.pose.position.y, 3))
 
 
 def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
@@ -124,6 +131,7 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
         operator.destroy_node()
         rclpy.try_shutdown()
     report["wall_time_s"] = round(time.monotonic() - started, 2)
+    report["final_base_xy"] = operator.base_xy
     report["exit_codes"] = codes
     return report
 

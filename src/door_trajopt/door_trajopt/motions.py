@@ -389,8 +389,8 @@ def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
     constraints = [waypoint_constraint(name, ConstraintKind.EQUALITY,
                                        _tcp_target_error(setup.chain, _fixed_target(pose), POSITION_MASK), 3, [t], m, n)
                    for name, pose, t in (("block_entry", entry, t_entry), ("block_position", target, n - 1))]
-    constraints += _pull_head_clearance(setup, options, m, n)
-    # the other hand still holds the handle: joints both arms share (the torso) must not move
+    # the other hand still holds the handle: joints both arms share (the torso) must not move,
+    # and so the head (on the torso) and the door stay where PULL left them, clear of each other
     pinned = _shared_with_other_arm(setup.chain)
     problem = _problem(setup, start_chain, options, (False, False), constraints, pinned=pinned)
     lower, upper = problem.limits.lower[:setup.chain.size], problem.limits.upper[:setup.chain.size]
