@@ -164,3 +164,17 @@ def test_toy_jacobians_match_finite_differences() -> None:
                 np.testing.assert_allclose(analytic[:, column], numeric, atol=1e-7)
             assert constraint.pattern is not None
             assert sp.csr_matrix(constraint.jacobian(trajectory)).nnz <= constraint.pattern.nnz
+
+
+def test_node_parameter_defaults_are_the_libraries_own():
+    """The node had kept 16 waypoints after the library moved to 10 (3× slower plans in the graph)."""
+    from door_trajopt.library import MotionLibrary
+    from door_trajopt.motions import MotionOptions
+    from door_trajopt.parameters import OPTIMIZER_PARAMETERS
+    defaults = {spec.name: spec.default for spec in OPTIMIZER_PARAMETERS}
+    options = MotionOptions()
+    assert defaults["waypoints"] == options.waypoints
+    assert (defaults["handle_turn"], defaults["push_angle"], defaults["pull_angle"]) == \
+        (options.handle_turn, options.push_angle, options.pull_angle)
+    assert (defaults["initial_guesses"], defaults["velocity_scale"]) == \
+        (MotionLibrary().starts, MotionLibrary().velocity_scale)

@@ -140,7 +140,8 @@ class TrajectoryOptimizerNode(Node):
         self.outcome_pub.publish(String(data=encode(outcome)))
         line = f"request {request.request_id} ({request.motion}): {status.value}"
         if status is OutcomeStatus.SUCCESS:  # rclpy forbids one call site logging at two severities
-            self.get_logger().info(f"{line} in {plan.planning_time_s * 1000:.0f} ms")
+            self.get_logger().info(f"{line} in {plan.planning_time_s * 1000:.0f} ms ({plan.result.iterations} "
+                                   f"iterations, guess {plan.attempts}; {plan.result.message or 'converged'})")
         else:
             self.get_logger().warning(f"{line}: {reason}")
         self.heartbeat.update(Health.OK if status is OutcomeStatus.SUCCESS else Health.WARN,
