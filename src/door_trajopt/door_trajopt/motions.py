@@ -62,7 +62,7 @@ class MotionOptions:
     waypoints: int = 10
     handle_turn: float = 0.8  # rad; seed 001 turned ~80°, the DRC-like sim handle stops at 1.0 rad
     push_angle: float = 0.2  # rad the arm pushes the door open (the body pushes it further)
-    pull_angle: float = 0.35  # rad (~20°; seed 001: ~40°, TALOS reaches less from outside the sweep)
+    pull_angle: float = 0.35  # rad (~20°; seed 001: ~40°): the gap the other hand blocks through
     pregrasp_offset: float = 0.04  # m, seed 001 Sec. II
     com_margin: float = 0.02  # m inside the support polygon
     wall_clearance: float = 0.04  # m, elbow in front of the door plane

@@ -1,0 +1,38 @@
+"""The Monte-Carlo's sampling and its printed summary, on synthetic reports (no graph)."""
+
+import numpy as np
+
+from door_bringup.door_task import TaskOptions
+from door_bringup.monte_carlo import overhead_line, sample_trial, summary
+
+
+def _report(opening: str, done: bool, detection_s: float, planning_s: float) -> dict:
+    attempts = [{"state": "DETECT_DOOR", "attempt": 1, "outcome": "succeeded", "planning_s": detection_s,
+                 "moving_s": 0.0, "waiting_s": 0.0, "reason": ""},
+                {"state": "WALK_TO_DOOR", "attempt": 1, "outcome": "succeeded" if done else "failed",
+                 "planning_s": planning_s, "moving_s": 5.0, "waiting_s": 0.0, "reason": ""}]
+    return {"options": {"opening": opening}, "final_state": "DONE" if done else "FAILED",
+            "failure_reason": "" if done else "WALK_TO_DOOR: planning failed", "attempts": attempts}
+
+
+def test_trials_are_reproducible_from_the_seed_and_within_their_ranges():
+    draws = [sample_trial(np.random.default_rng(3), TaskOptions(), 0) for _ in range(2)]
+    assert draws[0] == draws[1]
+    trial = draws[0]
+    assert trial.opening in ("push", "pull") and trial.hinge in ("left", "right")
+    assert 2.0 <= trial.distance <= 3.5 and 0.86 <= trial.door_width <= 0.96
+
+
+def test_overhead_is_the_median_of_the_runs_planning_and_detection():
+    reports = [_report("push", True, 1.0, 0.5), _report("pull", True, 2.0, 1.0), _report("push", False, 3.0, 3.0)]
+    line = overhead_line(reports)
+    assert "median 3.00 s" in line and "min 1.50 s" in line and "max 6.00 s" in line
+    assert "detection median 2.00 s" in line and line.endswith("missed")
+    assert overhead_line([_report("push", True, 0.5, 0.5)]).endswith("met")
+
+
+def test_summary_counts_each_opening_and_names_the_failures():
+    text = summary([_report("push", True, 1.0, 0.5), _report("pull", False, 1.0, 0.5)])
+    assert "push doors (paper: 91 % overall)" in text and "pull doors (paper: 82 % overall)" in text
+    assert "All doors: 1/2 (50 %)" in text
+    assert "- trial 1: WALK_TO_DOOR: planning failed" in text
