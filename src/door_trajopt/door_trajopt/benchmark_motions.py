@@ -74,7 +74,7 @@ def run_sequence(kinematics: RobotKinematics, scenario: Scenario, library: Motio
         results[motion] = (plan.planning_time_s, plan.succeeded)
         if plan.succeeded:
             body_q, angle = chain.full(plan.result.trajectory[-1, :chain.size]), plan.final_door[0]
-        library._cache.clear()  # measure cold plans, not cache hits
+        library.clear_cache()  # measure cold plans, not cache hits
     return results
 
 

@@ -89,6 +89,10 @@ class MotionLibrary:
         final = tuple(float(v) for v in result.trajectory[-1, k:])
         return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started, used_guess)
 
+    def clear_cache(self) -> None:
+        """Forget the last feasible trajectories (the next plans start cold)."""
+        self._cache.clear()
+
     def _feasible_is_enough(self, result: OptimizationResult) -> OptimizationResult:
         """A motion needs a feasible, smooth trajectory, not the last digit of its cost: an
         iteration-limited result within the constraint tolerance is used (the SQP once
