@@ -103,26 +103,25 @@ def is_kinematically_valid(action: StepAction, options: FootstepPlannerOptions) 
     |turn| <= max_turn, and the soles, the swing one grown by foot_margin,
     do not overlap.
     """
-    tolerance = 1e-9
-    x, y, yaw = action.swing_offset(Foot.LEFT, options.nominal_foot_separation)
-    within = (-options.max_backward_step - tolerance <= x <= options.max_stride + tolerance
-              and options.min_foot_separation - tolerance <= y
-              <= options.max_stance_separation + tolerance
-              and abs(yaw) <= options.max_turn + tolerance)
-    return within and not _soles_overlap(x, y, yaw, options)
+    return _left_swing_is_valid(*action.swing_offset(Foot.LEFT, options.nominal_foot_separation), options)
 
 
 def is_reachable_step(support: Footstep, swing: Footstep, options: FootstepPlannerOptions) -> bool:
     """Can ``swing`` be placed from ``support`` (the other foot)? The same limits as
     :func:`is_kinematically_valid`, for an arbitrary placement: the swing pose in the
     support sole's frame, mirrored for a right swing foot."""
-    tolerance = 1e-9
     dx, dy = swing.x - support.x, swing.y - support.y
     cos_yaw, sin_yaw = math.cos(support.yaw), math.sin(support.yaw)
     x, y = cos_yaw * dx + sin_yaw * dy, -sin_yaw * dx + cos_yaw * dy
     yaw = math.remainder(swing.yaw - support.yaw, math.tau)
     sign = swing.foot.side_sign
-    y, yaw = sign * y, sign * yaw
+    return _left_swing_is_valid(x, sign * y, sign * yaw, options)
+
+
+def _left_swing_is_valid(x: float, y: float, yaw: float, options: FootstepPlannerOptions) -> bool:
+    """A left swing foot at (x, y, yaw) in the support sole's frame: within the step limits
+    (1e-9 of rounding allowed) and clear of the support sole."""
+    tolerance = 1e-9
     within = (-options.max_backward_step - tolerance <= x <= options.max_stride + tolerance
               and options.min_foot_separation - tolerance <= y <= options.max_stance_separation + tolerance
               and abs(yaw) <= options.max_turn + tolerance)
