@@ -25,7 +25,7 @@ import numpy as np
 
 from door_robot.profile import Side
 from door_trajopt.chain import ArmChain
-from door_trajopt.door_model import DoorModel, rotation_vector
+from door_trajopt.door_model import UP, DoorModel, rotation_vector
 from door_trajopt.ik import IkOptions, solve_ik, solve_ik_multistart
 from door_trajopt.problem import (ConstraintKind, JointLimits, PostureCost, SmoothnessSpec,
                                   TrajectoryProblem, TrajoptError)
@@ -82,7 +82,8 @@ class MotionOptions:
         checks = {"waypoints": (4, 200), "handle_turn": (0.1, HANDLE_LIMITS[1]),
                   "push_angle": (0.05, HINGE_LIMITS[1]), "pull_angle": (0.05, HINGE_LIMITS[1]),
                   "pregrasp_offset": (0.0, 0.2), "com_margin": (0.0, 0.1), "wall_clearance": (0.0, 0.3),
-                  "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "block_entry": (0.0, 0.5), "block_standoff": (0.0, 0.5), "posture_weight": (0.0, 100.0),
+                  "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "block_entry": (0.0, 0.5),
+                  "block_standoff": (0.0, 0.5), "posture_weight": (0.0, 100.0),
                   "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3), "head_clearance": (0.0, 0.5),
                   "door_stop_lateral": (0.0, 0.3), "release_retreat": (0.0, 0.3)}
         for name, (low, high) in checks.items():
@@ -228,7 +229,7 @@ def _head_clearance(setup: MotionSetup, options: MotionOptions):
         normal = door.leaf_rotation(q[k]) @ door.normal
         offset = point - door.hinge_point
         value = np.array([options.head_clearance - offset @ normal])
-        d_normal = door.hinge_sign * np.cross(np.array([0.0, 0.0, 1.0]), normal)
+        d_normal = door.hinge_sign * np.cross(UP, normal)
         return value, np.concatenate([-(normal @ jacobian), [-(offset @ d_normal), 0.0]])[None, :]
     return function
 
@@ -330,12 +331,8 @@ def _closed_chain(setup: MotionSetup, start_chain: np.ndarray, options: MotionOp
                                        _tcp_target_error(setup.chain, target, FULL_MASK), 6, range(1, n), m, n),
                    *extra(m, n)]
     problem = _problem(setup, start_chain, options, door_moves, constraints)
-    guess = np.empty((n, m))
-    q = start_chain
-    for t in range(n):  # continuation IK along the door path
-        q = solve_ik(setup.chain, target.pose(*door_path[t]), q, IkOptions(max_iterations=60)).chain_q if t else q
-        guess[t] = np.concatenate([q, door_path[t]])
-    return MotionProblem(problem, guess, setup.chain)
+    chain_path = _continuation_ik(setup.chain, [target.pose(*door_path[t]) for t in range(n)], start_chain)
+    return MotionProblem(problem, np.hstack([chain_path, door_path]), setup.chain)
 
 
 def _turn(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
@@ -393,9 +390,8 @@ def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
     # and so the head (on the torso) and the door stay where PULL left them, clear of each other
     pinned = _shared_with_other_arm(setup.chain)
     problem = _problem(setup, start_chain, options, (False, False), constraints, pinned=pinned)
-    lower, upper = problem.limits.lower[:setup.chain.size], problem.limits.upper[:setup.chain.size]
-    q_entry = np.clip(_ik(setup.chain, entry, start_chain, POSITION_MASK), lower, upper)
-    q_end = np.clip(solve_ik(setup.chain, target, q_entry, mask=POSITION_MASK).chain_q, lower, upper)
+    q_entry = _within_limits(problem, _ik(setup.chain, entry, start_chain, POSITION_MASK))
+    q_end = _within_limits(problem, solve_ik(setup.chain, target, q_entry, mask=POSITION_MASK).chain_q)
     guess = _through_keys(problem, [(0, start_chain), (t_entry, q_entry), (n - 1, q_end)], setup.start_door)
     return MotionProblem(problem, guess, setup.chain)
 
@@ -421,10 +417,8 @@ def _ready(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
                                        _tcp_target_error(setup.chain, _fixed_target(retreat), POSITION_MASK),
                                        3, [t_back], m, n)]
     problem = _problem(setup, start_chain, options, (False, False), constraints, end=end, pinned=pinned)
-    limits = problem.limits
-    q_back = np.clip(solve_ik(setup.chain, retreat, start_chain, IkOptions(max_iterations=60),
-                              mask=POSITION_MASK).chain_q,
-                     limits.lower[:setup.chain.size], limits.upper[:setup.chain.size])
+    q_back = _within_limits(problem, solve_ik(setup.chain, retreat, start_chain, IkOptions(max_iterations=60),
+                                              mask=POSITION_MASK).chain_q)
     guess = _through_keys(problem, [(0, start_chain), (t_back, q_back), (n - 1, end_chain)], setup.start_door)
     return MotionProblem(problem, guess, setup.chain)
 
@@ -460,12 +454,8 @@ def _door_stop(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptio
                                        _tcp_target_error(setup.chain, _fixed_target(targets[t]), FULL_MASK),
                                        6, [t], m, n) for t in range(1, n)]
     problem = _problem(setup, start_chain, options, (False, False), constraints)
-    guess = np.empty((n, m))
-    q = start_chain
-    for t in range(n):  # continuation IK along the line
-        q = solve_ik(setup.chain, targets[t], q, IkOptions(max_iterations=60)).chain_q if t else q
-        guess[t] = np.concatenate([q, setup.start_door])
-    return MotionProblem(problem, guess, setup.chain)
+    chain_path = _continuation_ik(setup.chain, targets, start_chain)
+    return MotionProblem(problem, np.hstack([chain_path, np.tile(setup.start_door, (n, 1))]), setup.chain)
 
 
 def _door_stop_offset(door: DoorModel, theta: float, hand: np.ndarray, lateral: float) -> np.ndarray:
@@ -476,6 +466,22 @@ def _door_stop_offset(door: DoorModel, theta: float, hand: np.ndarray, lateral: 
     if abs(direction[1]) < 0.2:
         raise TrajoptError(f"the leaf at {theta:.2f} rad does not cross the robot's front")
     return (lateral - hand[1]) / direction[1] * direction
+
+
+def _continuation_ik(chain: ArmChain, targets: list[np.ndarray], start_chain: np.ndarray) -> np.ndarray:
+    """(n, k) joint path through TCP ``targets`` (the first is where the chain already is):
+    each waypoint's IK starts from the previous solution, so the path stays on one branch."""
+    path, q = [start_chain], start_chain
+    for target in targets[1:]:
+        q = solve_ik(chain, target, q, IkOptions(max_iterations=60)).chain_q
+        path.append(q)
+    return np.array(path)
+
+
+def _within_limits(problem: TrajectoryProblem, chain_q: np.ndarray) -> np.ndarray:
+    """``chain_q`` clipped to the problem's joint bounds (pinned joints included)."""
+    k = chain_q.size
+    return np.clip(chain_q, problem.limits.lower[:k], problem.limits.upper[:k])
 
 
 def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
