@@ -179,8 +179,8 @@ class FootstepPlannerNode(Node):
         return start, (through_door_pose(door, self.parameters["beyond_door"]),), World.from_door(door)
 
     def _stand_pose(self, door: DoorGeometry) -> Pose2D:
-        pull = door.opening is DoorOpening.PULL
-        return stand_pose_for_opening(door, self.options, reach=self.parameters["stand_reach_pull" if pull else "stand_reach"],
+        reach = self.parameters["stand_reach_pull" if door.opening is DoorOpening.PULL else "stand_reach"]
+        return stand_pose_for_opening(door, self.options, reach=reach,
                                       handle_offset=self.parameters["stand_handle_offset"],
                                       sweep_half_depth=self.parameters["pull_sweep_half_depth"],
                                       pull_sweep_angle=self.parameters["pull_sweep_angle"],

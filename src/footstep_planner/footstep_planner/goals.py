@@ -59,10 +59,11 @@ def stand_pose_for_opening(door: DoorGeometry, options: FootstepPlannerOptions,
     check_range("sweep_clearance", sweep_clearance, FieldRange(0.0, 0.5, "m"))
     check_range("pull_sweep_angle", pull_sweep_angle, FieldRange(0.0, math.pi / 2, "rad", low_open=True))
     check_range("beyond_latch", beyond_latch, FieldRange(-0.5, 1.0, "m"))
-    along = door.leaf_width - door.handle_offset - handle_offset
     if door.opening is DoorOpening.PULL:
         along = max(door.leaf_width + beyond_latch,
                     _outside_sweep(door, options, reach, sweep_clearance, sweep_half_depth, pull_sweep_angle))
+    else:
+        along = door.leaf_width - door.handle_offset - handle_offset
     x, y = door.to_world(along, reach)
     return Pose2D(x, y, door.facing_yaw)
 
