@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 import scipy.sparse as sp
@@ -178,3 +180,12 @@ def test_node_parameter_defaults_are_the_libraries_own():
         (options.handle_turn, options.push_angle, options.pull_angle)
     assert (defaults["initial_guesses"], defaults["velocity_scale"]) == \
         (MotionLibrary().starts, MotionLibrary().velocity_scale)
+
+
+@pytest.mark.parametrize("field", ["block_entry", "block_standoff", "head_clearance", "release_retreat",
+                                   "door_stop_lateral", "waypoints"])
+@pytest.mark.parametrize("value", [-0.01, math.nan, 1000.0])
+def test_motion_options_reject_out_of_range(field: str, value: float) -> None:
+    from door_trajopt.motions import MotionOptions
+    with pytest.raises(TrajoptError, match=f"MotionOptions.{field} = "):
+        MotionOptions(**{field: value})

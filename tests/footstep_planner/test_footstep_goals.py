@@ -145,3 +145,12 @@ def test_unreachable_arm_reach_is_rejected(reach: float) -> None:
     with pytest.raises(FootstepPlannerError) as caught:
         stand_pose_for_opening(door_facing_robot(), OPTIONS, reach=reach)
     assert caught.value.field == "reach"
+
+
+@pytest.mark.parametrize(("field", "value"), [("pull_sweep_angle", 0.0), ("pull_sweep_angle", 2.0),
+                                              ("pull_sweep_angle", math.nan), ("beyond_latch", 1.5),
+                                              ("beyond_latch", math.inf)])
+def test_bad_pull_stand_parameters_are_rejected(field: str, value: float) -> None:
+    with pytest.raises(FootstepPlannerError) as caught:
+        stand_pose_for_opening(door_facing_robot(DoorOpening.PULL), OPTIONS, **{field: value})
+    assert caught.value.field == field
