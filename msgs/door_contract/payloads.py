@@ -22,6 +22,7 @@ class OutcomeStatus(str, Enum):
     SUCCESS = "success"
     FAILURE = "failure"
     REJECTED = "rejected"  # refused before doing anything (bad input); nothing moved
+    FELL = "fell"  # executions only: the robot fell; it stays down and nothing executes any more
 
 
 class ExecutionKind(str, Enum):

@@ -8,7 +8,7 @@ from door_contract.payloads import OutcomeStatus
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import Side, load_profile
 from door_sim_bridge.execution import TrajectoryExecution
-from door_sim_bridge.world import DoorWorld, EventKind, WorldConfig
+from door_sim_bridge.world import DoorWorld, EventKind, RobotMode, WorldConfig
 from door_sim_bridge.world.transforms import translation
 
 HAND = Side.RIGHT  # the default door is hinged on the left: its handle is on the robot's right
@@ -83,7 +83,14 @@ def test_hand_turns_the_handle_and_pushes_the_door_open(world, kinematics):
     assert world.peak_grasp_force(HAND) < 0.5 * world.config.grasp_break_force
 
 
-def test_grasp_slips_when_its_force_exceeds_the_limit(world, kinematics):
+def test_grasp_slips_when_its_force_exceeds_the_limit(kinematics):
+    config = WorldConfig(stance=GRASP_STANCE, posture_overrides=manipulation_posture(),
+                         robot_mode=RobotMode.KINEMATIC)  # the yank teleports the base
+    with DoorWorld(config) as world:
+        _yank_the_robot_off_the_handle(world, kinematics)
+
+
+def _yank_the_robot_off_the_handle(world, kinematics):
     reach_handle(world, kinematics, HAND)
     assert world.grasp(HAND, close=True).success
     world.set_base_pose(world.base_pose() @ translation([-0.15, 0.0, 0.0]))  # yank the robot back
@@ -96,7 +103,7 @@ def test_grasp_slips_when_its_force_exceeds_the_limit(world, kinematics):
 
 
 def test_a_slip_during_a_trajectory_ends_it_with_a_failure(kinematics):
-    with DoorWorld(WorldConfig(stance=GRASP_STANCE, grasp_break_force=60.0)) as world:
+    with DoorWorld(WorldConfig(stance=GRASP_STANCE, grasp_break_force=25.0)) as world:  # TALOS's true elbow: weak
         _pull_the_hand_off(world, kinematics)
 
 

@@ -65,6 +65,9 @@ class Execution(ABC):
         """Set the robot's commands for the world's current time; True once finished."""
         if self.done:
             return True
+        if self.world.fallen:
+            self._fell()
+            return True
         if self.phase is ExecutionPhase.PENDING:
             self._start_time = self.world.time
             self._event_cursor = len(self.world.events())
@@ -104,6 +107,12 @@ class Execution(ABC):
     def _finish(self, status: OutcomeStatus, reason: str = "", slipped: bool = False) -> None:
         self.result = ExecutionResult(status, reason, self.elapsed, slipped)
         self.phase = ExecutionPhase.FINISHED
+
+    def _fell(self) -> None:
+        """The robot is down: end with FELL (a plan sent after the fall moves nothing)."""
+        elapsed = self.elapsed
+        self.phase = ExecutionPhase.FINISHED
+        self.result = ExecutionResult(OutcomeStatus.FELL, f"the robot fell: {self.world.fall_reason}", elapsed)
 
     def _slip_since_start(self) -> SimEvent | None:
         """The first grasp slip recorded since this execution started, if any."""
