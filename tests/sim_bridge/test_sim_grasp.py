@@ -58,7 +58,9 @@ def test_grasp_made_within_2_cm_then_released(world, kinematics):
 
 
 def test_hand_turns_the_handle_and_pushes_the_door_open(world, kinematics):
-    """The WPI-CMU sequence: grasp, turn the lever past the latch, push the leaf open."""
+    """The WPI-CMU sequence: grasp, turn the lever past the latch, push the leaf open — on the
+    physical robot, balancing, with neither foot slipping more than 1 cm."""
+    feet_before = world.foot_placements()
     reach_handle(world, kinematics, HAND)
     assert world.grasp(HAND, close=True).success
     grasp_then = world.handle_grasp_pose()
@@ -81,6 +83,10 @@ def test_hand_turns_the_handle_and_pushes_the_door_open(world, kinematics):
     assert world.holding(HAND) and not world.slipped(HAND)
     assert world.hand_handle_distance(HAND) < 0.01
     assert world.peak_grasp_force(HAND) < 0.5 * world.config.grasp_break_force
+    assert not world.fallen
+    feet_after = world.foot_placements()
+    for foot, before in feet_before.items():
+        assert np.hypot(feet_after[foot].x - before.x, feet_after[foot].y - before.y) < 0.01
 
 
 def test_grasp_slips_when_its_force_exceeds_the_limit(kinematics):

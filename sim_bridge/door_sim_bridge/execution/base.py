@@ -51,6 +51,8 @@ class Execution(ABC):
         self.result: ExecutionResult | None = None
         self._start_time = 0.0
         self._event_cursor = 0
+        if world.fallen:  # whatever it asks, nothing executes on a fallen robot
+            self._fell()
 
     @property
     def done(self) -> bool:
@@ -101,6 +103,8 @@ class Execution(ABC):
 
     # ------------------------------------------------------------------ for subclasses
     def _reject(self, reason: str) -> None:
+        if self.done:  # already ended (the robot had fallen)
+            return
         self.phase = ExecutionPhase.FINISHED
         self.result = ExecutionResult(OutcomeStatus.REJECTED, reason, 0.0)
 

@@ -13,10 +13,11 @@ Every control tick (every physics step) it turns references into joint position 
     and the swing foot along its curve;
   plus, in both, the stabiliser's CoM offset (:mod:`door_sim_bridge.walking.stabilizer`).
 
-The model is open loop within a stance: at each touch-down it is re-anchored on the measured
-pose of the new support sole, so drift does not accumulate over a walk and each step lands
-where it was planned in ``odom``. A stop request during a walk re-plans the pattern to end at
-the next stable stance: the foot in the air lands on its target, then both feet stand.
+Feet on the ground are held where they are measured and the model is anchored on the measured
+support sole every tick of a single support, so a stance foot that slips does not carry its
+error into the next landing: each step lands where it was planned in ``odom``. A stop request
+during a walk re-plans the pattern to end at the next stable stance: the foot in the air
+lands on its target, the other steps beside it, and the CoM comes to rest over both.
 """
 
 from __future__ import annotations
@@ -68,6 +69,13 @@ def yaw_rotation(yaw: float) -> np.ndarray:
     return rotation
 
 
+def supports_from(items: list) -> placo.Supports:
+    supports = placo.Supports()
+    for item in items:
+        supports.append(item)
+    return supports
+
+
 def mean_yaw(first: np.ndarray, second: np.ndarray) -> float:
     return math.atan2(first[1, 0] + second[1, 0], first[0, 0] + second[0, 0])
 
@@ -88,6 +96,9 @@ class WalkingController:
         self._support_side: str | None = None
         self._feet: dict[Foot, np.ndarray] = {}
         self._trunk_target = np.zeros(3)
+        self._trunk_from = np.zeros(3)
+        self._trunk_in_stance = np.zeros(3)  # trunk over the feet midpoint, in the stance frame
+        self._settle_time = 0.0
         self._trunk_rotation = np.eye(3)
         self.steps_planned = 0
         self.steps_landed = 0
@@ -114,15 +125,32 @@ class WalkingController:
         self._upper.update({k: float(v) for k, v in joint_positions.items() if k in self._upper})
         self.robot.set_T_world_frame(PLACO_TRUNK_FRAME, np.asarray(base_pose, dtype=float))
         self.robot.update_kinematics()
+        self._feet = {Foot.LEFT: level_frame(self.robot.get_T_world_left()),
+                      Foot.RIGHT: level_frame(self.robot.get_T_world_right())}
+        stance = self._stance_frame()
+        trunk = np.array(self.robot.get_T_world_frame(PLACO_TRUNK_FRAME)[:3, 3])
+        self._trunk_in_stance = stance[:3, :3].T @ (trunk - stance[:3, 3])
         self._stand_here()
 
+    def _stance_frame(self) -> np.ndarray:
+        """Feet midpoint on the floor, mean heading."""
+        left, right = self._feet[Foot.LEFT], self._feet[Foot.RIGHT]
+        frame = np.eye(4)
+        frame[:3, :3] = yaw_rotation(mean_yaw(left, right))
+        frame[:2, 3] = 0.5 * (left[:2, 3] + right[:2, 3])
+        return frame
+
     def _stand_here(self) -> None:
-        """Hold the soles and the trunk where the model has them now."""
+        """Hold the soles where the model has them; bring the trunk over their midpoint, at
+        the height and offset it had standing at the start (a smooth blend of ``settle_s``)."""
         self.mode, self._trajectory, self._support_side = BalanceMode.STANDING, None, None
         self._feet = {Foot.LEFT: level_frame(self.robot.get_T_world_left()),
                       Foot.RIGHT: level_frame(self.robot.get_T_world_right())}
-        self._trunk_target = np.array(self.robot.get_T_world_frame(PLACO_TRUNK_FRAME)[:3, 3])
-        self._trunk_rotation = yaw_rotation(mean_yaw(self._feet[Foot.LEFT], self._feet[Foot.RIGHT]))
+        self._trunk_from = np.array(self.robot.get_T_world_frame(PLACO_TRUNK_FRAME)[:3, 3])
+        stance = self._stance_frame()
+        self._trunk_target = stance[:3, 3] + stance[:3, :3] @ self._trunk_in_stance
+        self._trunk_rotation = stance[:3, :3]
+        self._settle_time = 0.0
         self._tasks.trunk_mode = True
 
     # ------------------------------------------------------------------ commands
@@ -154,6 +182,8 @@ class WalkingController:
             return 0.0
         parameters = placo_parameters(self.gait, walking.foot_length, walking.foot_width,
                                       walking.foot_separation, float(self.robot.com_world()[2]))
+        # placo's generator keeps a C++ reference to its parameters: they must outlive it
+        self._parameters = parameters
         self._generator = placo.WalkPatternGenerator(self.robot, parameters)
         supports = placo.FootstepsPlanner.make_supports(footsteps, 0.0, True, parameters.has_double_support(), True)
         trajectory = self._generator.plan(supports, self.robot.com_world(), 0.0)
@@ -166,10 +196,9 @@ class WalkingController:
         return float(trajectory.t_end)
 
     def stop(self) -> None:
-        """End the walk at the next stable stance (no-op when standing or already stopping)."""
-        if self.mode is not BalanceMode.WALKING or self._stopping:
-            return
-        self._stopping = True
+        """End the walk at the next stable stance (no-op when standing)."""
+        if self.mode is BalanceMode.WALKING:
+            self._stopping = True
 
     @property
     def remaining_s(self) -> float:
@@ -198,7 +227,10 @@ class WalkingController:
     def _stand_references(self, measurement: Measurement) -> None:
         offset = self.stabilizer.update(self.dt, self._com_reference(), measurement.wrench, measurement.cop,
                                         walking=False)
-        target = self._trunk_target + np.array([offset[0], offset[1], 0.0])
+        blend = 0.5 - 0.5 * math.cos(math.pi * min(1.0, self._settle_time / self.gait.settle_s))
+        self._settle_time += self.dt
+        trunk = (1.0 - blend) * self._trunk_from + blend * self._trunk_target
+        target = trunk + np.array([offset[0], offset[1], 0.0])
         self._tasks.update_tasks(self._feet[Foot.LEFT], self._feet[Foot.RIGHT], target, self._trunk_rotation)
 
     def _com_reference(self) -> np.ndarray:
@@ -233,6 +265,57 @@ class WalkingController:
             task = self._tasks.left_foot_task if foot is Foot.LEFT else self._tasks.right_foot_task
             task.T_world_frame = level_frame(measurement.soles[foot])
 
+    def _replan_stop(self, t: float) -> None:
+        """Re-plan the pattern from ``t`` to stop at the next stable stance: the foot in the air
+        (if any) lands on its target, the other steps beside it, both stand (supports built by
+        placo's ``make_supports`` over [trailing, leading, beside]; the first one carries the
+        elapsed ratio, as placo's own ``replan_supports`` does)."""
+        self._stopping = False
+        trajectory = self._trajectory
+        current = trajectory.get_support(t)
+        if current.end or current.start:
+            return
+        if current.is_both():
+            leading_side = trajectory.get_next_support(t, 1).side()
+        else:
+            leading_side = placo.HumanoidRobot.other_side(current.side())
+        trailing_side = placo.HumanoidRobot.other_side(leading_side)
+        leading_frame = (current.footstep_frame(leading_side) if current.is_both()
+                         else trajectory.get_next_support(t, 1).footstep_frame(leading_side))
+        trailing = self._footstep(trailing_side, current.footstep_frame(trailing_side))
+        leading = self._footstep(leading_side, leading_frame)
+        beside = self._footstep(trailing_side, self._beside(leading_frame, trailing_side))
+        supports = placo.FootstepsPlanner.make_supports([trailing, leading, beside], current.t_start, False, True, True)
+        if current.is_both():
+            supports = supports_from(list(supports)[1:])
+        first = supports[0]
+        first.elapsed_ratio = current.elapsed_ratio + (t - current.t_start) / (
+            self._support_duration(current) * current.time_ratio)
+        first.time_ratio = current.time_ratio
+        replanned = self._generator.replan(supports, trajectory, t)
+        if replanned.replan_success:
+            self._trajectory = replanned
+            self.steps_planned = self.steps_landed + (1 if current.is_both() else 2)
+
+    def _footstep(self, side, frame: np.ndarray) -> placo.Footstep:
+        step = placo.Footstep(self.profile.walking.foot_width, self.profile.walking.foot_length)
+        step.side, step.frame = side, np.array(frame, dtype=float)
+        return step
+
+    def _beside(self, frame: np.ndarray, side) -> np.ndarray:
+        """The sole frame beside ``frame`` at the standing foot separation, towards ``side``."""
+        lateral = self.profile.walking.foot_separation * (1.0 if side == placo.HumanoidRobot_Side.left else -1.0)
+        beside = np.array(frame, dtype=float)
+        beside[:3, 3] = beside[:3, 3] + beside[:3, :3] @ np.array([0.0, lateral, 0.0])
+        return beside
+
+    def _support_duration(self, support) -> float:
+        gait = self.gait
+        double = gait.double_support_ratio * gait.single_support_s
+        if not support.is_both():
+            return gait.single_support_s
+        return double * gait.start_end_ratio if (support.start or support.end) else double
+
     def _generator_com_height(self) -> float:
         return float(self._trajectory.get_p_world_CoM(0.0)[2])
 
@@ -252,24 +335,3 @@ class WalkingController:
         self.robot.set_T_world_support(placo.flatten_on_floor(np.asarray(measured_sole, dtype=float)))
         self.robot.ensure_on_floor()
 
-    def _replan_stop(self, t: float) -> None:
-        """Re-plan so that the walk ends at the next stable stance."""
-        self._stopping = False
-        trajectory = self._trajectory
-        current = trajectory.get_support(t)
-        if current.end:
-            return
-        if current.is_both():
-            feet = list(current.footsteps)
-        else:
-            following = trajectory.get_next_support(t)
-            feet = list(following.footsteps)
-        supports = placo.FootstepsPlanner.make_supports(feet, 0.0, False, True, True)
-        final = supports[-1]
-        if current.is_both():
-            current.end = True
-            new_supports = [current]
-        else:
-            new_supports = [current, final]
-        replanned = self._generator.replan(new_supports, trajectory, t)
-        self._trajectory = replanned

@@ -36,13 +36,15 @@ class GaitOptions:
     zmp_margin: float = 0.02  # m the planned ZMP keeps inside the sole rectangle
     planned_timesteps: int = 500  # LIPM preview horizon in QP steps (≥ the plan's length)
     in_place_tolerance: float = 0.01  # m (and 2× this in rad): a first step this close is dropped
+    settle_s: float = 1.0  # s to bring the trunk over the feet when a walk ends or stops
 
     def __post_init__(self) -> None:
         check_ranges(self, {
             "single_support_s": (0.2, 3.0, "s"), "double_support_ratio": (0.0, 2.0, ""),
             "start_end_ratio": (1.0, 10.0, ""), "foot_height": (0.01, 0.2, "m"),
             "foot_rise_ratio": (0.0, 0.45, ""), "zmp_margin": (0.0, 0.05, "m"),
-            "planned_timesteps": (50, 5000, "steps"), "in_place_tolerance": (0.0, 0.05, "m")})
+            "planned_timesteps": (50, 5000, "steps"), "in_place_tolerance": (0.0, 0.05, "m"),
+            "settle_s": (0.1, 5.0, "s")})
 
     @property
     def step_duration_s(self) -> float:
