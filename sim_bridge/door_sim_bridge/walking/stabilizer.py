@@ -11,10 +11,12 @@ so a forward push moves the CoP forward, and leaning the CoM by
 (ENVIRONMENT.md: a standing TALOS held 100 N at a hand with this lean, and fell without it).
 
 **Feedback (CoP admittance).** What the feed-forward misses (an unmeasured shove, a model
-error) shows as the measured CoP leaving the reference; the part of that error beyond a
-dead band ``cop_deadband`` is integrated into the offset with gain ``cop_gain`` (1/s), and the
-offset leaks back towards the feed-forward with time constant ``leak_time_s`` when the
-error is inside the band.
+error) shows as the measured CoP staying away from the reference. The CoP error is first
+low-passed (time constant ``cop_filter_s``: a robot rocking from foot to foot after a walk
+averages out, a sustained push does not — fed back unfiltered, the rocking grew until it
+fell); the part of the filtered error beyond a dead band ``cop_deadband`` is integrated
+into the offset with gain ``cop_gain`` (1/s), and the offset leaks back towards the
+feed-forward with time constant ``leak_time_s`` when the error is inside the band.
 
 Both only act on what exceeds the dead bands: small door forces (a handle's return spring, a
 closer) leave the body still, so a hand on the handle follows its plan exactly — leaning
@@ -36,8 +38,9 @@ class StabilizerOptions:
     """Gains and limits of the CoM offset (SI units)."""
 
     force_deadband: float = 0.03  # m of predicted CoP shift the feed-forward ignores standing
-    cop_deadband: float = 0.04  # m of CoP error the feedback ignores
+    cop_deadband: float = 0.06  # m of CoP error the feedback ignores (a last resort near the sole edges)
     cop_gain: float = 0.5  # 1/s, integral gain on the CoP error beyond the dead band
+    cop_filter_s: float = 0.5  # s, low-pass time constant of the CoP error
     leak_time_s: float = 2.0  # s, the feedback offset decays with this time constant
     max_offset: float = 0.10  # m, |CoM offset| per axis
     max_rate: float = 0.20  # m/s, change of the offset
@@ -45,7 +48,7 @@ class StabilizerOptions:
 
     def __post_init__(self) -> None:
         check_ranges(self, {"force_deadband": (0.0, 0.2, "m"), "cop_deadband": (0.0, 0.2, "m"),
-                            "cop_gain": (0.0, 50.0, "1/s"), "leak_time_s": (0.05, 100.0, "s"),
+                            "cop_gain": (0.0, 50.0, "1/s"), "cop_filter_s": (0.0, 10.0, "s"), "leak_time_s": (0.05, 100.0, "s"),
                             "max_offset": (0.0, 0.2, "m"), "max_rate": (0.001, 5.0, "m/s")})
 
 
@@ -80,10 +83,12 @@ class Stabilizer:
         self.options = options
         self._weight = weight
         self._feedback = np.zeros(2)
+        self._cop_error = np.zeros(2)
         self.offset = np.zeros(2)
 
     def reset(self) -> None:
         self._feedback = np.zeros(2)
+        self._cop_error = np.zeros(2)
         self.offset = np.zeros(2)
 
     def update(self, dt: float, reference: np.ndarray, wrench: ContactWrench, cop: np.ndarray | None,
@@ -95,8 +100,9 @@ class Stabilizer:
         if not walking:  # on one foot the polygon is too small to leave part of a force uncompensated
             ff = beyond(ff, options.force_deadband)
         if cop is not None and (options.walking_feedback or not walking):
-            error = beyond(np.asarray(cop[:2]) - reference[:2], options.cop_deadband)
-            self._feedback -= options.cop_gain * error * dt
+            smoothing = min(1.0, dt / options.cop_filter_s) if options.cop_filter_s > 0.0 else 1.0
+            self._cop_error += smoothing * (np.asarray(cop[:2]) - reference[:2] - self._cop_error)
+            self._feedback -= options.cop_gain * beyond(self._cop_error, options.cop_deadband) * dt
         self._feedback *= max(0.0, 1.0 - dt / options.leak_time_s)
         target = np.clip(ff + self._feedback, -options.max_offset, options.max_offset)
         step = np.clip(target - self.offset, -options.max_rate * dt, options.max_rate * dt)

@@ -118,8 +118,8 @@ class DoorWorld:
         self.robot.hide_links(self.config.camera.robot_visuals)
         self._grasps = GraspController(self._client, self.robot, self.door, self.config.grasp_distance,
                                        self.config.grasp_break_force, self.config.grasp_break_steps)
-        self.balance = (BalanceLoop(self._client, self.robot, self._floor, self.door.body, self.config)
-                        if physical else None)
+        self.balance = (BalanceLoop(self._client, self.robot, self._floor, self.door.body, self.config,
+                                    self._grasps.holding) if physical else None)
 
     def _set_sole_friction(self, friction: float) -> None:
         for link in self.profile.feet.values():
