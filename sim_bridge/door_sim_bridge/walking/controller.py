@@ -131,6 +131,7 @@ class WalkingController:
         trunk = np.array(self.robot.get_T_world_frame(PLACO_TRUNK_FRAME)[:3, 3])
         self._trunk_in_stance = stance[:3, :3].T @ (trunk - stance[:3, 3])
         self._stand_here()
+        self._settle_time = self.gait.settle_s  # placed standing: nothing to settle
 
     def _stance_frame(self) -> np.ndarray:
         """Feet midpoint on the floor, mean heading."""
@@ -199,6 +200,11 @@ class WalkingController:
         """End the walk at the next stable stance (no-op when standing)."""
         if self.mode is BalanceMode.WALKING:
             self._stopping = True
+
+    @property
+    def settling(self) -> bool:
+        """Standing, but the trunk still on its way over the feet after a walk."""
+        return self.mode is BalanceMode.STANDING and self._settle_time < self.gait.settle_s
 
     @property
     def remaining_s(self) -> float:

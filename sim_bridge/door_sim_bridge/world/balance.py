@@ -14,7 +14,7 @@ import numpy as np
 
 from door_contract.converters.footsteps import Foot, FootPlacement
 from door_robot.profile import Side
-from door_sim_bridge.walking.controller import Measurement, WalkingController
+from door_sim_bridge.walking.controller import BalanceMode, Measurement, WalkingController
 from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import WorldConfig
 from door_sim_bridge.world.hardware import centre_of_pressure, contact_forces, fall_reason, net_wrench
@@ -86,7 +86,9 @@ class BalanceLoop:
 
     @property
     def walking(self) -> bool:
-        return self.controller.mode.value == "walking"
+        """Stepping, or settling over the feet after the last step (a plan made from the
+        pose while settling would miss by the settling motion, up to ~10 cm)."""
+        return self.controller.mode is BalanceMode.WALKING or self.controller.settling
 
     def centre_of_mass(self) -> np.ndarray:
         """The controller model's CoM (odom, m)."""
