@@ -47,3 +47,5 @@ SENSOR = QosSpec(depth=5)
 LATCHED = QosSpec(depth=1, durability=Durability.TRANSIENT_LOCAL)
 #: /clock: many small messages, only the newest matters.
 CLOCK = QosSpec(depth=1, reliability=Reliability.BEST_EFFORT)
+#: Service requests and responses: every call answered, a burst of hundreds queued.
+SERVICE = QosSpec(depth=1000)

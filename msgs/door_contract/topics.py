@@ -12,7 +12,7 @@ import importlib
 from dataclasses import dataclass
 
 from door_contract.frames import Frame
-from door_contract.qos import CLOCK, EVENTS, LATCHED, SENSOR, QosSpec
+from door_contract.qos import CLOCK, EVENTS, LATCHED, SENSOR, SERVICE, QosSpec
 
 
 @dataclass(frozen=True)
@@ -34,12 +34,17 @@ class TopicSpec:
 
 @dataclass(frozen=True)
 class ServiceSpec:
-    """One service of the contract."""
+    """One service of the contract.
+
+    ``qos``: the request and response queues. rclpy's default keeps 10, so a burst of 100
+    calls got 20 answers (issue #12); the contract's services queue deeply.
+    """
 
     name: str
     type_name: str  # e.g. "std_srvs/srv/SetBool"
     server: str
     meaning: str
+    qos: QosSpec = SERVICE
 
     def srv_class(self) -> type:
         return interface_class(self.type_name)
@@ -83,9 +88,11 @@ class Topics:
                                   "footstep plan finishes or is rejected")
     ARM_TRAJECTORY = TopicSpec("/arm_controller/joint_trajectory",
                                "trajectory_msgs/msg/JointTrajectory", EVENTS, "fsm_supervisor",
-                               "approved trajectory to execute", unit="rad, s")
+                               "approved trajectory to execute; one without points stops the arm and "
+                               "holds (ros2_control)", unit="rad, s")
     FOOTSTEP_PLAN = TopicSpec("/footstep_plan", "nav_msgs/msg/Path", EVENTS, "fsm_supervisor",
-                              "approved footsteps to walk (even index = left foot, odd = right)",
+                              "approved footsteps to walk (even index = left foot, odd = right); an "
+                              "empty path stops at the next stable stance",
                               frame=Frame.ODOM.value, unit="m")
     HANDLE_POSE = TopicSpec("/door/handle_pose", "geometry_msgs/msg/PoseStamped", EVENTS,
                             "door_detector", "handle grasp point; x = door normal towards the "
@@ -104,6 +111,9 @@ class Topics:
                          unit="px")
     FOOTSTEP_REQUEST = TopicSpec("/footstep_planner/request", "std_msgs/msg/String", EVENTS,
                                  "fsm_supervisor", "JSON FootstepRequest (id, goal)")
+    FOOTSTEP_CANCEL = TopicSpec("/footstep_planner/cancel", "std_msgs/msg/String", EVENTS,
+                                "fsm_supervisor", "JSON PlanningCancel: drop a request (answered "
+                                "superseded)")
     FOOTSTEP_PROPOSAL = TopicSpec("/footstep_planner/plan", "nav_msgs/msg/Path", EVENTS,
                                   "footstep_planner", "planned footsteps awaiting approval",
                                   frame=Frame.ODOM.value, unit="m")
@@ -114,6 +124,9 @@ class Topics:
                                  frame=Frame.ODOM.value)
     MOTION_REQUEST = TopicSpec("/trajectory_optimizer/request", "std_msgs/msg/String", EVENTS,
                                "fsm_supervisor", "JSON MotionRequest (id, motion, backend)")
+    MOTION_CANCEL = TopicSpec("/trajectory_optimizer/cancel", "std_msgs/msg/String", EVENTS,
+                              "fsm_supervisor", "JSON PlanningCancel: drop a request (answered "
+                              "superseded)")
     MOTION_PROPOSAL = TopicSpec("/trajectory_optimizer/trajectory",
                                 "trajectory_msgs/msg/JointTrajectory", EVENTS,
                                 "trajectory_optimizer", "optimised trajectory awaiting approval",
@@ -128,7 +141,8 @@ class Topics:
                             "JSON TaskReport when the task ends: every state attempt with its "
                             "outcome, planning, waiting and moving time", unit="s")
     OPERATOR = TopicSpec("/door_task/operator", "std_msgs/msg/String", EVENTS, "operator",
-                         "approve, reject, repeat, pause, resume, abort, manual")
+                         "approve N, reject N, repeat N (N = the request id); pause, stop, resume, "
+                         "abort, manual")
     DIAGNOSTICS = TopicSpec("/diagnostics", "diagnostic_msgs/msg/DiagnosticArray", EVENTS, "all",
                             "health, timings, outcomes")
 
