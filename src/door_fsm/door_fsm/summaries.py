@@ -19,3 +19,15 @@ def plan_summary(outcome: PlanningOutcome) -> dict:
     summary = {k: outcome.details[k] for k in keep if k in outcome.details}
     summary["planning_ms"] = round(outcome.planning_time_s * 1000.0, 1)
     return summary
+
+
+def work_of(message: object, step_duration: float) -> float:
+    """Nominal execution time of a proposal (robot clock, s): a trajectory's duration, or a
+    footstep plan's steps × the robot profile's step duration."""
+    points = getattr(message, "points", None)
+    if points is not None:
+        if not points:
+            return 0.0
+        last = points[-1].time_from_start
+        return last.sec + last.nanosec * 1e-9
+    return len(getattr(message, "poses", ())) * step_duration
