@@ -155,10 +155,18 @@ class FootstepExecution(Execution):
             if self._index == len(self.steps):
                 self._finish(OutcomeStatus.SUCCESS)
                 return
+            if self.stop_reason is not None:  # both feet down: the next stable stance
+                self._finish(OutcomeStatus.STOPPED, f"stopped after step {self._index} of {len(self.steps)}: "
+                                                    f"{self.stop_reason}")
+                return
             self._begin_step()
             tau = (self.elapsed - self._index * self._step_duration) / self._step_duration
         step_time = self.world.config.time_step / self._step_duration
         self.world.set_base_pose(blend_poses(self._from_pose, self._to_pose, smooth_blend(tau + step_time)))
+
+    def _on_stop(self) -> None:
+        """Walking stops at the next stable stance: the step in progress is finished (this
+        kinematic walk has both feet down only between steps); see ``_command_now``."""
 
     def _hold(self) -> None:
         """The base stays where it is (it only moves when commanded)."""
