@@ -32,6 +32,7 @@ from door_bringup.processes import ProcessSupervisor
 from door_bringup.run_plots import plot_run
 from door_bringup.table_one import format_table, phase_rows
 from door_bringup.workspace import Workspace, repository_root
+from door_contract.network import keep_discovery_local
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import TaskReport, decode
 from door_contract.topics import Topics
@@ -119,6 +120,7 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
     """Run the task once; returns the report as a dict (final_state FAILED when it never ended)."""
     supervisor = ProcessSupervisor(workspace, run_dir / "logs")
     overrides = options.node_overrides()
+    keep_discovery_local()  # the scripted operator's participant
     rclpy.init()
     operator = ScriptedOperator(options.operator == "auto")
     started = time.monotonic()
