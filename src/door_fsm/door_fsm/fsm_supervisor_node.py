@@ -40,6 +40,7 @@ from door_fsm.summaries import door_summary, plan_summary, work_of
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
 
+HEARTBEAT_PERIOD_S = 0.25
 KINDS = {"footsteps": (Topics.FOOTSTEP_PROPOSAL, Topics.FOOTSTEP_OUTCOME, Topics.FOOTSTEP_CANCEL),
          "motion": (Topics.MOTION_PROPOSAL, Topics.MOTION_OUTCOME, Topics.MOTION_CANCEL)}
 
@@ -58,7 +59,9 @@ class FsmSupervisorNode(Node):
                 max_repeats=p["max_repeats"]))
         self.door = DoorContext(p["opening"], p["backend"])
         self.exchange = PlanExchange(lambda message: work_of(message, step_duration))
-        self.heartbeat, self.stamps, self.steady = Heartbeat(self), UniqueStamps(), Clock(clock_type=ClockType.STEADY_TIME)
+        # 4 Hz: the sim bridge's dead-man stops the robot when this heartbeat falls silent
+        self.heartbeat = Heartbeat(self, period_s=HEARTBEAT_PERIOD_S)
+        self.stamps, self.steady = UniqueStamps(), Clock(clock_type=ClockType.STEADY_TIME)
         self.graph = GraphWatch(set(p["required_nodes"]), self._seconds(self.steady) + p["start_delay"],
                                 p["graph_timeout"])
         self._detection_request: int | None = None
