@@ -17,26 +17,25 @@ from std_srvs.srv import SetBool
 from trajectory_msgs.msg import JointTrajectory
 
 from door_contract.converters.diagnostics import Health
-from door_contract.door_estimates import door_estimate_problem
 from door_contract.errors import ContractError
 from door_contract.frames import Frame
 from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
                                         create_contract_subscription, declare_parameters, run_node)
-from door_contract.payloads import (DoorEstimate, ExecutionOutcome, OutcomeStatus, PlanningCancel, PlanningOutcome,
-                                    TaskReport, decode, encode)
+from door_contract.payloads import ExecutionOutcome, OutcomeStatus, PlanningCancel, PlanningOutcome, decode, encode
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
 from door_contract.topics import Services, Topics
 from door_fsm import actions as act
 from door_fsm import events as ev
+from door_fsm.answers import execution_event, planning_event, usable_door_estimate
 from door_fsm.door_context import DoorContext
 from door_fsm.exchange import PlanExchange, Proposal
 from door_fsm.graph_watch import GraphWatch
 from door_fsm.machine import DoorTaskMachine, MachineOptions, MachineOptionsError
 from door_fsm.operator_commands import AutonomyLevel, UnknownCommandError, parse_command
 from door_fsm.parameters import NODE_NAME, SUPERVISOR_PARAMETERS
-from door_fsm.records import Instant, clocks_note
+from door_fsm.records import Instant
 from door_fsm.states import DoorOpening
-from door_fsm.summaries import door_summary, plan_summary, work_of
+from door_fsm.summaries import door_summary, task_report, work_of
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
 
@@ -66,7 +65,8 @@ class FsmSupervisorNode(Node):
                                 p["graph_timeout"])
         self._detection_request: int | None = None
         self._handlers = {act.AnnounceState: self._announce, act.AskApproval: self._ask, act.ClearApproval:
-                          lambda a: self.approval_pub.publish(String(data="")), act.Notice: self._notice,
+                          lambda a: self.approval_pub.publish(String(data="")),
+                          act.Notice: lambda a: self.get_logger().warning(a.text),
                           act.RequestDetection: self._request_detection, act.RequestFootsteps: self._request_footsteps,
                           act.RequestMotion: self._request_motion, act.CancelPlanning: self._cancel,
                           act.StopMotion: self._stop, act.CallGrasp: self._call_grasp, act.Execute: self._execute}
@@ -83,7 +83,7 @@ class FsmSupervisorNode(Node):
         self.cancel_pubs = {kind: pub(topics[2]) for kind, topics in KINDS.items()}
         sub = lambda topic, callback: create_contract_subscription(self, topic, callback)
         for kind, (proposal, outcome, _) in KINDS.items():
-            sub(proposal, lambda m, k=kind: self._feed_pair(self.exchange.add_message(k, stamp_ns(m.header.stamp), m)))
+            sub(proposal, lambda m, k=kind: self._feed_answer(self.exchange.add_message(k, stamp_ns(m.header.stamp), m)))
             sub(outcome, lambda m, k=kind: self._on_planning_outcome(k, m))
         sub(Topics.DOOR_ESTIMATE, self._on_door_estimate)
         sub(Topics.EXECUTION_OUTCOME, self._on_execution_outcome)
@@ -99,17 +99,17 @@ class FsmSupervisorNode(Node):
         return Instant(self._seconds(self.steady), self._seconds(self.get_clock()))
 
     def _feed(self, event: ev.Event) -> None:
-        for action in self.machine.handle(event, self._now()):
+        self._run(self.machine.handle(event, self._now()))
+
+    def _run(self, actions: list[act.Action]) -> None:
+        for action in actions:
             self._handlers[type(action)](action)
-        self.exchange.begin(self.machine.request_id)
+        self.exchange.begin(self.machine.request_id)  # answers to older requests are stale now
 
     # ------------------------------------------------------------------ inputs
     def _on_door_estimate(self, msg: String) -> None:
         try:
-            estimate = decode(DoorEstimate, msg.data)
-            problem = door_estimate_problem(estimate)
-            if problem:
-                raise ContractError(problem)
+            estimate = usable_door_estimate(msg.data)
         except ContractError as error:
             self.get_logger().warning(f"door estimate rejected: {error}")
             return
@@ -121,19 +121,15 @@ class FsmSupervisorNode(Node):
 
     def _on_planning_outcome(self, kind: str, msg: String) -> None:
         try:
-            outcome = decode(PlanningOutcome, msg.data)
+            self._feed_answer(self.exchange.add_outcome(kind, decode(PlanningOutcome, msg.data)))
         except ContractError as error:
             self.get_logger().warning(f"planning outcome rejected: {error}")
-            return
-        answer = self.exchange.add_outcome(kind, outcome)
-        if isinstance(answer, PlanningOutcome):
-            self._feed(ev.ProposalFailed(answer.request_id, f"{answer.status.value}: {answer.reason}"))
-        self._feed_pair(answer if isinstance(answer, Proposal) else None)
 
-    def _feed_pair(self, proposal: Proposal | None) -> None:
-        if proposal is not None:
-            self.door.planned(proposal.outcome)
-            self._feed(ev.ProposalReady(proposal.request_id, plan_summary(proposal.outcome), proposal.work_s))
+    def _feed_answer(self, answer: Proposal | PlanningOutcome | None) -> None:
+        if answer is not None:
+            if isinstance(answer, Proposal):
+                self.door.planned(answer.outcome)
+            self._feed(planning_event(answer))
 
     def _on_execution_outcome(self, msg: String) -> None:
         try:
@@ -142,15 +138,10 @@ class FsmSupervisorNode(Node):
             self.get_logger().warning(f"execution outcome rejected: {error}")
             return
         request = self.exchange.finished(outcome.request_id)
-        if request is None:
-            return
-        if outcome.slipped:
-            self._feed(ev.HandSlipped(outcome.reason))
-            return
-        if outcome.status is OutcomeStatus.SUCCESS:
-            self.door.executed()
-        self._feed(ev.ExecutionFinished(request, outcome.status is OutcomeStatus.SUCCESS,
-                                        f"{outcome.status.value}: {outcome.reason}", outcome.status is OutcomeStatus.FELL))
+        if request is not None:
+            if outcome.status is OutcomeStatus.SUCCESS and not outcome.slipped:
+                self.door.executed()
+            self._feed(execution_event(outcome, request))
 
     def _on_operator(self, msg: String) -> None:
         try:
@@ -169,15 +160,11 @@ class FsmSupervisorNode(Node):
         if step.warning:
             self.get_logger().warning(step.warning)
         if step.start:
-            for action in self.machine.start(now):
-                self._handlers[type(action)](action)
-            self.exchange.begin(self.machine.request_id)
+            self._run(self.machine.start(now))
         for name in step.lost:
             self._feed(ev.NodeLost(name))
         if self.graph.started:
-            for action in self.machine.tick(now):
-                self._handlers[type(action)](action)
-            self.exchange.begin(self.machine.request_id)
+            self._run(self.machine.tick(now))
 
     # ------------------------------------------------------------------ outputs
     def _announce(self, action: act.AnnounceState) -> None:
@@ -186,17 +173,14 @@ class FsmSupervisorNode(Node):
         self.heartbeat.update(health, action.state, reason=action.reason or "-", failure=self.machine.failure_reason or "-")
         self.get_logger().info(f"state {action.state}" + (f" ({action.reason})" if action.reason else ""))
         if self.machine.state.is_terminal:
-            clock = "sim" if self.get_parameter("use_sim_time").value else "wall"
-            report = TaskReport(self.machine.state.value, self.machine.failure_reason, self.parameters["opening"],
-                                self.parameters["autonomy"], tuple(self.machine.report()), clocks_note(clock))
+            report = task_report(self.machine.state.value, self.machine.failure_reason, self.parameters["opening"],
+                                 self.parameters["autonomy"], self.machine.report(),
+                                 "sim" if self.get_parameter("use_sim_time").value else "wall")
             self.report_pub.publish(String(data=encode(report)))
 
     def _ask(self, action: act.AskApproval) -> None:
         self.approval_pub.publish(String(data=action.text))
         self.get_logger().info(f"waiting for the operator: {action.text}")
-
-    def _notice(self, action: act.Notice) -> None:
-        self.get_logger().warning(action.text)
 
     def _request_detection(self, action: act.RequestDetection) -> None:
         self._detection_request = action.request_id

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 from door_fsm import actions as act
 from door_fsm import events as ev
+from door_fsm.approvals import approval_text, refusal
 from door_fsm.operator_commands import AutonomyLevel, OperatorCommand, OperatorWord
 from door_fsm.records import PHASE_CLOCK, Instant, StateRecord
 from door_fsm.states import DoorOpening, Phase, StateOutcome, TaskState
@@ -209,7 +210,8 @@ class DoorTaskMachine:
         self._work_s = max(0.0, event.work_s)
         if self._needs_approval():
             self._begin_phase(Phase.AWAITING_APPROVAL, now, self.options.approval_timeout_s)
-            return [act.AskApproval(self._request_id, self._approval_text(event.summary))]
+            return [act.AskApproval(self._request_id, approval_text(self.state.label, self._request_id, self.work,
+                                                                    event.summary))]
         return self._execute(now)
 
     def _execute(self, now: Instant) -> list[act.Action]:
@@ -245,12 +247,6 @@ class DoorTaskMachine:
         level = self.options.autonomy
         return level is AutonomyLevel.STEP or (level is AutonomyLevel.SUPERVISED and self.work.critical)
 
-    def _approval_text(self, summary: dict) -> str:
-        rid = self._request_id
-        details = ", ".join(f"{k}={v}" for k, v in summary.items())
-        return (f"{self.state.label} #{rid}: approve {self.work.kind.value} '{self.work.target}'? {details} "
-                f"| reply 'approve {rid}', 'reject {rid}' or 'repeat {rid}'; pause, stop, abort, manual")
-
     # ------------------------------------------------------------------ operator
     def _on_operator(self, word: OperatorWord, now: Instant) -> list[act.Action]:
         command = word.command
@@ -263,9 +259,9 @@ class DoorTaskMachine:
                 return [act.Notice(f"nothing to resume in {self.state.label}")]
             state, self._resume_to = self._resume_to, None
             return self._enter(state, now, "resumed by the operator")
-        refusal = self._refusal(word)
-        if refusal:
-            return [act.Notice(refusal)]
+        refused = refusal(word, self.state.label, self.work, self._request_id, self.phase)
+        if refused:
+            return [act.Notice(refused)]
         if command is OperatorCommand.APPROVE:
             self._close_phase(now)
             return self._execute(now)
@@ -275,17 +271,6 @@ class DoorTaskMachine:
         self._close_phase(now)
         self.records[-1].outcome, self.records[-1].reason = StateOutcome.FAILED, reason
         return actions + self._enter(self.state, now, reason)
-
-    def _refusal(self, word: OperatorWord) -> str:
-        """Why an answer does not apply now ('' when it does): it must name the current request."""
-        if self.work is None:
-            return f"'{word}' refused: nothing is proposed in {self.state.label}"
-        if word.request_id != self._request_id:
-            return (f"'{word}' refused: the current request is #{self._request_id} "
-                    f"({self.state.label}, {self.phase.value}); nothing changed")
-        if word.command is OperatorCommand.APPROVE and self.phase is not Phase.AWAITING_APPROVAL:
-            return f"'{word}' refused: request #{self._request_id} is {self.phase.value}, not awaiting approval"
-        return ""
 
     def _suspend(self, target: TaskState, reason: str, now: Instant) -> list[act.Action]:
         if self.state is target:

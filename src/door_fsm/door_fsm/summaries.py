@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from door_contract.payloads import DoorEstimate, PlanningOutcome
+from door_contract.payloads import DoorEstimate, PlanningOutcome, TaskReport
 
 
 def door_summary(estimate: DoorEstimate) -> dict:
@@ -31,3 +31,11 @@ def work_of(message: object, step_duration: float) -> float:
         last = points[-1].time_from_start
         return last.sec + last.nanosec * 1e-9
     return len(getattr(message, "poses", ())) * step_duration
+
+
+def task_report(state: str, failure_reason: str, opening: str, autonomy: str, attempts: list[dict],
+                robot_clock: str) -> TaskReport:
+    """The TaskReport, saying which clock each time is on (docs/CLOCKS.md)."""
+    from door_fsm.records import clocks_note
+
+    return TaskReport(state, failure_reason, opening, autonomy, tuple(attempts), clocks_note(robot_clock))

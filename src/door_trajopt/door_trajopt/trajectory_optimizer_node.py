@@ -24,15 +24,16 @@ from door_contract.converters.diagnostics import Health
 from door_contract.converters.joint_state import joint_state_to_positions
 
 from door_contract.converters.trajectory import joint_path_to_msg
-from door_contract.door_estimates import door_angle_problem, door_estimate_problem
+from door_contract.door_estimates import door_estimate_problem
 from door_contract.errors import ContractError
 from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
                                         create_contract_subscription, declare_parameters, run_node)
 from door_contract.planner_inputs import PlannerInputs
-from door_contract.planner_service import Finished, PlanningWorker, decode_request
+from door_contract.planner_desk import PlannerDesk
+from door_contract.planner_service import Finished
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
-from door_contract.payloads import (DoorEstimate, MotionRequest, OutcomeStatus, PlanningCancel, PlanningOutcome,
-                                    decode, encode, without_non_finite)
+from door_contract.payloads import (DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, encode,
+                                    without_non_finite)
 from door_contract.topics import Topics
 from door_robot.errors import RobotModelError
 from door_robot.kinematics import RobotKinematics
@@ -75,10 +76,10 @@ class TrajectoryOptimizerNode(Node):
         self.trajectory_pub = create_contract_publisher(self, Topics.MOTION_PROPOSAL)
         self.outcome_pub = create_contract_publisher(self, Topics.MOTION_OUTCOME)
         create_contract_subscription(self, Topics.JOINT_STATES, self._on_joint_states)
-        self.stamps, self.unanswerable = UniqueStamps(), 0
-        self.worker = PlanningWorker(self.create_guard_condition(self._deliver).trigger, "motion planning")
-        create_contract_subscription(self, Topics.MOTION_REQUEST, self._on_request)
-        create_contract_subscription(self, Topics.MOTION_CANCEL, self._on_cancel)
+        self.stamps = UniqueStamps()
+        self.desk = PlannerDesk(self, self.heartbeat, MotionRequest, (Topics.MOTION_REQUEST, Topics.MOTION_CANCEL),
+                                lambda r: self.inputs.doors.pick(r.door_stamp, r.door), self._job_for,
+                                self._deliver_one, lambda rid, why: self._answer(rid, "?", "", OutcomeStatus.REJECTED, why))
         self.get_logger().info(f"ready: {p['robot_profile']}, default backend {p['backend']}")
 
     def _on_joint_states(self, msg: JointState) -> None:
@@ -90,44 +91,14 @@ class TrajectoryOptimizerNode(Node):
 
 
 
-    def _on_request(self, msg: String) -> None:
-        request, request_id, problem = decode_request(MotionRequest, msg.data)
-        if request is not None:
-            problem = door_angle_problem(request.door_angle) or ""
-        if problem:
-            self._refuse(request_id, problem)
-            return
-        try:
-            estimate = self.inputs.doors.pick(request.door_stamp, request.door)
-        except ContractError as error:
-            self._refuse(request_id, f"door: {error}")
-            return
+    def _job_for(self, request: MotionRequest, estimate: DoorEstimate | None):
+        """The planning job of ``request`` over the inputs as they are now (the measured state)."""
         base = None if self.inputs.base_pose is None else self.inputs.base_pose.copy()
         snapshot = Snapshot(None if self.joint_positions is None else dict(self.joint_positions), base, estimate)
-        self.worker.submit(request, lambda: self._plan(request, snapshot))
-
-    def _refuse(self, request_id: int | None, problem: str) -> None:
-        if request_id is None:  # nothing to answer to: say so, and count it
-            self.unanswerable += 1
-            self.get_logger().warning(f"motion request without a readable id ignored: {problem}")
-            self.heartbeat.update(Health.WARN, "unanswerable request", unanswerable=self.unanswerable)
-            return
-        self._answer(request_id, "?", "", OutcomeStatus.REJECTED, problem)
-
-    def _on_cancel(self, msg: String) -> None:
-        try:
-            cancel = decode(PlanningCancel, msg.data)
-        except ContractError as error:
-            self.get_logger().warning(f"cancel rejected: {error}")
-            return
-        self.get_logger().info(f"cancel {cancel.request_id}: {self.worker.cancel(cancel.request_id, cancel.reason).value}")
-
-    def _deliver(self) -> None:
-        """On the executor thread: one outcome per finished request, and the trajectory if proposed."""
-        for finished in self.worker.take_finished():
-            self._deliver_one(finished)
+        return lambda: self._plan(request, snapshot)
 
     def _deliver_one(self, finished: Finished) -> None:
+        """On the executor thread: one outcome per finished request, and the trajectory if proposed."""
         request, plan = finished.request, finished.result
         answer = lambda status, reason, plan=None, stamp=-1: self._answer(
             request.request_id, request.motion, request.backend, status, reason, plan, stamp)
@@ -210,7 +181,7 @@ class TrajectoryOptimizerNode(Node):
 
 
     def destroy_node(self) -> None:
-        self.worker.close()
+        self.desk.close()
         super().destroy_node()
 
 

@@ -23,17 +23,18 @@ from visualization_msgs.msg import Marker, MarkerArray
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.footsteps import Foot as ContractFoot
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
-from door_contract.door_estimates import door_angle_problem, door_estimate_problem
+from door_contract.door_estimates import door_estimate_problem
 from door_contract.geometry import yaw_of
 from door_contract.errors import ContractError
 from door_contract.frames import Frame
 from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
-                                        create_contract_subscription, declare_parameters, run_node)
+                                        declare_parameters, run_node)
 from door_contract.planner_inputs import PlannerInputs
-from door_contract.planner_service import Finished, PlanningWorker, decode_request
+from door_contract.planner_desk import PlannerDesk
+from door_contract.planner_service import Finished
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
-from door_contract.payloads import (DoorEstimate, FootstepRequest, OutcomeStatus, PlanningCancel, PlanningOutcome,
-                                    decode, encode, without_non_finite)
+from door_contract.payloads import (DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, encode,
+                                    without_non_finite)
 from door_contract.topics import Topics
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
@@ -121,56 +122,26 @@ class FootstepPlannerNode(Node):
         self.plan_pub = create_contract_publisher(self, Topics.FOOTSTEP_PROPOSAL)
         self.outcome_pub = create_contract_publisher(self, Topics.FOOTSTEP_OUTCOME)
         self.marker_pub = create_contract_publisher(self, Topics.FOOTSTEP_MARKERS)
-        self.stamps, self.unanswerable = UniqueStamps(), 0
-        self.worker = PlanningWorker(self.create_guard_condition(self._deliver).trigger, "footstep planning")
-        create_contract_subscription(self, Topics.FOOTSTEP_REQUEST, self._on_request)
-        create_contract_subscription(self, Topics.FOOTSTEP_CANCEL, self._on_cancel)
+        self.stamps = UniqueStamps()
+        self.desk = PlannerDesk(self, self.heartbeat, FootstepRequest, (Topics.FOOTSTEP_REQUEST, Topics.FOOTSTEP_CANCEL),
+                                lambda r: self.inputs.doors.pick(r.door_stamp, r.door), self._job_for,
+                                self._deliver_one, lambda rid, why: self._answer(rid, "?", OutcomeStatus.REJECTED, why))
         self.get_logger().info(f"ready: {self.parameters['robot_profile']} steps ≤ {self.options.max_stride} m, "
                                f"heuristic weight {self.options.heuristic_weight}")
 
-    def _on_request(self, msg: String) -> None:
-        request, request_id, problem = decode_request(FootstepRequest, msg.data)
-        if request is not None:
-            problem = door_angle_problem(request.door_angle) or ""
-        if problem:
-            self._refuse(request_id, problem)
-            return
-        try:
-            estimate = self.inputs.doors.pick(request.door_stamp, request.door)
-        except ContractError as error:
-            self._refuse(request_id, f"door: {error}")
-            return
+    def _job_for(self, request: FootstepRequest, estimate: DoorEstimate | None):
+        """The planning job of ``request`` over the inputs as they are now (the measured state)."""
         snapshot = Snapshot(None if self.inputs.base_pose is None else self.inputs.base_pose.copy(),
                             self.inputs.feet, estimate, self.planned_stance)
-        self.worker.submit(request, lambda: self._solve(request, snapshot))
-
-    def _refuse(self, request_id: int | None, problem: str) -> None:
-        if request_id is None:  # nothing to answer to: say so, and count it
-            self.unanswerable += 1
-            self.get_logger().warning(f"footstep request without a readable id ignored: {problem}")
-            self.heartbeat.update(Health.WARN, "unanswerable request", unanswerable=self.unanswerable)
-            return
-        self._answer(request_id, "?", OutcomeStatus.REJECTED, problem)
-
-    def _on_cancel(self, msg: String) -> None:
-        try:
-            cancel = decode(PlanningCancel, msg.data)
-        except ContractError as error:
-            self.get_logger().warning(f"cancel rejected: {error}")
-            return
-        self.get_logger().info(f"cancel {cancel.request_id}: {self.worker.cancel(cancel.request_id, cancel.reason).value}")
+        return lambda: self._solve(request, snapshot)
 
     def _solve(self, request: FootstepRequest, snapshot: Snapshot) -> Solved:
         """On the worker thread: the problem from the snapshot, then the search."""
         start, waypoints, world = self._problem(request, snapshot)
         return Solved(start, waypoints, self._plan(world, start, waypoints, self._options_for(request.goal, len(waypoints))))
 
-    def _deliver(self) -> None:
-        """On the executor thread: one outcome per finished request, and the plan if proposed."""
-        for finished in self.worker.take_finished():
-            self._deliver_one(finished)
-
     def _deliver_one(self, finished: Finished) -> None:
+        """On the executor thread: one outcome per finished request, and the plan if proposed."""
         request = finished.request
         if finished.dropped:
             self._answer(request.request_id, request.goal, OutcomeStatus.SUPERSEDED, finished.dropped)
@@ -289,7 +260,7 @@ class FootstepPlannerNode(Node):
                               f"last: {goal} {status.value}", last_planning_ms=round(planning_time * 1000, 2))
 
     def destroy_node(self) -> None:
-        self.worker.close()
+        self.desk.close()
         super().destroy_node()
 
 
