@@ -48,7 +48,6 @@ from door_detection.scribble import scribble_problem
 from door_detection.voting import Voter
 
 STREAMS = ("color", "depth", "info", "pose")
-INCOMPLETE_AFTER_S = 1.0  # a frame still missing a stream when a message 1 s newer arrives is dropped
 
 
 class DoorDetectorNode(Node):
@@ -101,8 +100,7 @@ class DoorDetectorNode(Node):
         if len(frame) == len(STREAMS):
             del self.pending[key]
             self._process(key, frame)
-        # drop incomplete frames a second older than this message (or beyond 20), saying what they lacked
-        while self.pending and (len(self.pending) > 20 or next(iter(self.pending)) < stamp - INCOMPLETE_AFTER_S):
+        while len(self.pending) > 20:  # drop incomplete old frames, saying what they lacked
             old_stamp, parts = self.pending.popitem(last=False)
             self._report_incomplete(old_stamp, parts)
 
