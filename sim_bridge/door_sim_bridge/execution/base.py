@@ -51,6 +51,7 @@ class Execution(ABC):
         self.result: ExecutionResult | None = None
         self._start_time = 0.0
         self._event_cursor = 0
+        self.stop_reason: str | None = None  # set by stop(); the execution ends as soon as it safely can
         if world.fallen:  # whatever it asks, nothing executes on a fallen robot
             self._fell()
 
@@ -93,6 +94,19 @@ class Execution(ABC):
         assert self.result is not None
         return self.result
 
+    def stop(self, reason: str) -> None:
+        """Stop on command (an empty message, a lost supervisor): the execution finishes with
+        STOPPED and ``reason`` — at once if it never started, else where the subclass says
+        the robot is safe to leave: :meth:`_on_stop` (trajectory: hold the current positions
+        now; footsteps: at the next stable stance). A no-op once finished."""
+        if self.done:
+            return
+        if self.phase is ExecutionPhase.PENDING:
+            self._finish(OutcomeStatus.STOPPED, reason)
+            return
+        self.stop_reason = reason
+        self._on_stop()
+
     def cancel(self, reason: str = "cancelled") -> ExecutionResult:
         """Stop where the robot is and finish with FAILURE (no-op once finished)."""
         if not self.done:
@@ -125,6 +139,11 @@ class Execution(ABC):
 
     def _on_start(self) -> None:
         """Hook called at the first command."""
+
+    def _on_stop(self) -> None:
+        """Hook of :meth:`stop` for a running execution; by default: hold now and finish."""
+        self._hold()
+        self._finish(OutcomeStatus.STOPPED, f"stopped: {self.stop_reason}")
 
     @abstractmethod
     def _command_now(self) -> None:

@@ -131,7 +131,7 @@ class FootstepExecution(Execution):
         self._index = 0
         self._from_pose = np.eye(4)
         self._to_pose = np.eye(4)
-        self._stop_reason = ""
+        self._problem_reason = ""  # why the walk was stopped from inside (collision, slip)
         self._slipped = False
 
     @property
@@ -173,15 +173,18 @@ class FootstepExecution(Execution):
 
     def _command_physical(self, problem: tuple[str, bool] | None) -> None:
         """Watch the walking controller; on a problem, stop at the next stable stance."""
-        if problem is not None and not self._stop_reason:
-            self._stop_reason, self._slipped = problem
+        if problem is not None and not self._problem_reason:
+            self._problem_reason, self._slipped = problem
             self.world.stop_walking()
         if self.world.walking:
             return
-        if self._stop_reason:
-            self._finish(OutcomeStatus.FAILURE, self._stop_reason, slipped=self._slipped)
-            return
-        self._judge_landing()
+        if self._problem_reason:
+            self._finish(OutcomeStatus.FAILURE, self._problem_reason, slipped=self._slipped)
+        elif self.stop_reason is not None:
+            self._finish(OutcomeStatus.STOPPED, f"stopped after step {self.steps_done} of {len(self.steps)}: "
+                                                f"{self.stop_reason}")
+        else:
+            self._judge_landing()
 
     def _judge_landing(self) -> None:
         feet = self.world.foot_placements()
@@ -208,10 +211,20 @@ class FootstepExecution(Execution):
             if self._index == len(self.steps):
                 self._finish(OutcomeStatus.SUCCESS)
                 return
+            if self.stop_reason is not None:  # both feet down: the next stable stance
+                self._finish(OutcomeStatus.STOPPED, f"stopped after step {self._index} of {len(self.steps)}: "
+                                                    f"{self.stop_reason}")
+                return
             self._begin_step()
             tau = (self.elapsed - self._index * self._step_duration) / self._step_duration
         step_time = self.world.config.time_step / self._step_duration
         self.world.set_base_pose(blend_poses(self._from_pose, self._to_pose, smooth_blend(tau + step_time)))
+
+    def _on_stop(self) -> None:
+        """Walking stops at the next stable stance. Physical: the walking controller lands the
+        foot in the air and steps the other beside it; kinematic: the step in progress is
+        finished (that walk has both feet down only between steps). See ``_command_now``."""
+        self.world.stop_walking()
 
     def _hold(self) -> None:
         """Physical: end the walk at the next stable stance; kinematic: the base stays put."""

@@ -10,10 +10,11 @@ class NodeLaunch:
     package: str
     executable: str
     node_name: str
+    use_sim_time: bool = True  # every node but the clock's source runs on /clock (docs/CLOCKS.md)
 
 
 GRAPH = (
-    NodeLaunch("door_sim_bridge", "sim_bridge", "sim_bridge"),
+    NodeLaunch("door_sim_bridge", "sim_bridge", "sim_bridge", use_sim_time=False),  # publishes /clock
     NodeLaunch("door_detection", "door_detector", "door_detector"),
     NodeLaunch("footstep_planner", "footstep_planner", "footstep_planner"),
     NodeLaunch("door_trajopt", "trajectory_optimizer", "trajectory_optimizer"),

@@ -4,13 +4,16 @@ A :class:`~door_contract.payloads.FootstepRequest` ("stand" or "through") is pla
 the robot's odometry and the last door estimate; the plan goes out on
 ``/footstep_planner/plan`` (even index = left foot) with markers, then a PlanningOutcome
 with the plan's stamp. Bad or missing inputs and unreachable goals end in a failure
-outcome with the planner's reason, within its expansion and time bounds.
+outcome with the planner's reason, within its expansion and time bounds. Every request
+whose id can be read gets exactly one outcome; planning runs on a worker thread, the
+newest request (or a cancel on ``/footstep_planner/cancel``) supersedes an older one
+(:mod:`door_contract.planner_service`).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 from rclpy.node import Node
@@ -20,15 +23,20 @@ from visualization_msgs.msg import Marker, MarkerArray
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.footsteps import Foot as ContractFoot
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
+from door_contract.door_estimates import door_estimate_problem
 from door_contract.geometry import yaw_of
-from door_contract.errors import ContractError, ParameterRangeError
+from door_contract.errors import ContractError
 from door_contract.frames import Frame
-from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
+from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
                                         declare_parameters, run_node)
 from door_contract.planner_inputs import PlannerInputs
-from door_contract.stamps import stamp_ns
-from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, decode, encode
+from door_contract.planner_desk import PlannerDesk
+from door_contract.planner_service import Finished
+from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
+from door_contract.payloads import (DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, encode,
+                                    without_non_finite)
 from door_contract.topics import Topics
+from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide, wall_obstacles
@@ -45,6 +53,23 @@ from footstep_planner.world import World
 
 class RequestRefused(Exception):
     pass
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """The inputs a request is planned from, taken when it arrives (the measured state)."""
+
+    base_pose: np.ndarray | None
+    feet: list | None
+    estimate: DoorEstimate | None
+    planned_stance: Stance | None
+
+
+@dataclass(frozen=True)
+class Solved:
+    start: Stance
+    waypoints: tuple[Pose2D, ...]
+    result: PlanResult
 
 
 STEP_LIMIT_MARGIN = 0.95  # plan within 95 % of the robot's step limits: the robot checks its own
@@ -88,10 +113,8 @@ class FootstepPlannerNode(Node):
     def __init__(self) -> None:
         super().__init__(NODE_NAME)
         self.parameters = declare_parameters(self, PLANNER_PARAMETERS)
-        try:
+        with as_parameter_error("footstep planner options", FootstepPlannerError, RobotModelError):
             self.options = planner_options(self.parameters["robot_profile"], self.parameters)
-        except FootstepPlannerError as error:
-            raise ParameterRangeError(f"footstep planner options: {error}") from None
         self.passage_angle: float | None = None
         self.planned_stance: Stance | None = None  # where the last plan leaves the feet
         self.heartbeat = Heartbeat(self)
@@ -99,39 +122,52 @@ class FootstepPlannerNode(Node):
         self.plan_pub = create_contract_publisher(self, Topics.FOOTSTEP_PROPOSAL)
         self.outcome_pub = create_contract_publisher(self, Topics.FOOTSTEP_OUTCOME)
         self.marker_pub = create_contract_publisher(self, Topics.FOOTSTEP_MARKERS)
-        create_contract_subscription(self, Topics.FOOTSTEP_REQUEST, self._on_request)
+        self.stamps = UniqueStamps()
+        self.desk = PlannerDesk(self, self.heartbeat, FootstepRequest, (Topics.FOOTSTEP_REQUEST, Topics.FOOTSTEP_CANCEL),
+                                lambda r: self.inputs.doors.pick(r.door_stamp, r.door), self._job_for,
+                                self._deliver_one, lambda rid, why: self._answer(rid, "?", OutcomeStatus.REJECTED, why))
         self.get_logger().info(f"ready: {self.parameters['robot_profile']} steps ≤ {self.options.max_stride} m, "
                                f"heuristic weight {self.options.heuristic_weight}")
 
-    def _on_request(self, msg: String) -> None:
-        try:
-            request = decode(FootstepRequest, msg.data)
-        except ContractError as error:
-            self.get_logger().warning(f"footstep request rejected: {error}")
+    def _job_for(self, request: FootstepRequest, estimate: DoorEstimate | None):
+        """The planning job of ``request`` over the inputs as they are now (the measured state)."""
+        snapshot = Snapshot(None if self.inputs.base_pose is None else self.inputs.base_pose.copy(),
+                            self.inputs.feet, estimate, self.planned_stance)
+        return lambda: self._solve(request, snapshot)
+
+    def _solve(self, request: FootstepRequest, snapshot: Snapshot) -> Solved:
+        """On the worker thread: the problem from the snapshot, then the search."""
+        start, waypoints, world = self._problem(request, snapshot)
+        return Solved(start, waypoints, self._plan(world, start, waypoints, self._options_for(request.goal, len(waypoints))))
+
+    def _deliver_one(self, finished: Finished) -> None:
+        """On the executor thread: one outcome per finished request, and the plan if proposed."""
+        request = finished.request
+        if finished.dropped:
+            self._answer(request.request_id, request.goal, OutcomeStatus.SUPERSEDED, finished.dropped)
             return
-        try:
-            start, waypoints, world = self._problem(request)
-            result = self._plan(world, start, waypoints, self._options_for(request.goal, len(waypoints)))
-        except (RequestRefused, FootstepPlannerError, ValueError) as error:
-            self._answer(request, OutcomeStatus.REJECTED, str(error))
+        if isinstance(finished.error, (RequestRefused, FootstepPlannerError, ContractError)):
+            self._answer(request.request_id, request.goal, OutcomeStatus.REJECTED, str(finished.error))
             return
-        except Exception as error:  # a bug must end in a failure outcome, not a dead node
-            self.get_logger().error(f"request {request.request_id} crashed the planner: {error!r}")
-            self._answer(request, OutcomeStatus.FAILURE, f"internal error: {error!r}")
+        if finished.error is not None:  # a bug must end in a failure outcome, not a dead node
+            self.get_logger().error(f"request {request.request_id} crashed the planner: {finished.error!r}")
+            self._answer(request.request_id, request.goal, OutcomeStatus.FAILURE, f"internal error: {finished.error!r}")
             return
+        start, waypoints, result = finished.result.start, finished.result.waypoints, finished.result.result
         if not result.succeeded:
-            self._answer(request, OutcomeStatus.FAILURE, f"{result.outcome.value}: {result.reason}",
-                         result.planning_time, {"expansions": result.expansions})
+            self._answer(request.request_id, request.goal, OutcomeStatus.FAILURE,
+                         f"{result.outcome.value}: {result.reason}", result.planning_time,
+                         {"expansions": result.expansions})
             return
         self.planned_stance = result.plan.final_stance
         placements = contract_footsteps(start, result.plan)
         path = footsteps_to_path(placements)
-        path.header.stamp = self.get_clock().now().to_msg()
+        path.header.stamp = time_msg_of_ns(self.stamps.next(self.get_clock().now().nanoseconds))
         self.plan_pub.publish(path)
         self.marker_pub.publish(footstep_markers(placements, self.options))
         goal = waypoints[-1]
         length = float(np.hypot(goal.x - start.left.x / 2 - start.right.x / 2, goal.y - start.left.y / 2 - start.right.y / 2))
-        self._answer(request, OutcomeStatus.SUCCESS, "", result.planning_time,
+        self._answer(request.request_id, request.goal, OutcomeStatus.SUCCESS, "", result.planning_time,
                      {"stamp_ns": stamp_ns(path.header.stamp), "steps": len(result.plan.steps), "length_m": round(length, 3),
                       "expansions": result.expansions})
 
@@ -151,18 +187,23 @@ class FootstepPlannerNode(Node):
             self.get_logger().warning(f"{relaxed_from}: planned once more without safety margins")
         return result
 
-    def _problem(self, request: FootstepRequest) -> tuple[Stance, tuple[Pose2D, ...], World]:
+    def _problem(self, request: FootstepRequest, snapshot: Snapshot) -> tuple[Stance, tuple[Pose2D, ...], World]:
         """Start stance, the body poses to walk through in order, and the obstacles."""
-        if self.inputs.base_pose is None:
+        if snapshot.base_pose is None:
             raise RequestRefused("no valid odometry yet")
-        estimate = self.inputs.doors.pick(request.door_stamp, request.door)
+        estimate = snapshot.estimate
         if estimate is None:
             raise RequestRefused("no door estimate yet" if request.door_stamp < 0 else
                                  f"door estimate of stamp {request.door_stamp:.3f} s was not received")
+        if door_estimate_problem(estimate):
+            raise RequestRefused(door_estimate_problem(estimate))
         if request.goal not in ("stand", "through"):
             raise RequestRefused(f"unknown goal {request.goal!r}; use 'stand' or 'through'")
-        body = Pose2D(float(self.inputs.base_pose[0, 3]), float(self.inputs.base_pose[1, 3]), yaw_of(self.inputs.base_pose))
-        start = self._start_stance(body)
+        if request.opening not in ("push", "pull"):
+            raise RequestRefused(f"unknown opening {request.opening!r}; use 'push' or 'pull'")
+        pose = snapshot.base_pose
+        body = Pose2D(float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
+        start = self._start_stance(body, snapshot)
         door = self._door_geometry(request, estimate)
         if request.goal == "stand":
             # the door is shut while the robot walks there; the stand pose itself keeps the
@@ -186,15 +227,15 @@ class FootstepPlannerNode(Node):
                                       pull_sweep_angle=self.parameters["pull_sweep_angle"],
                                       beyond_latch=self.parameters["pull_stand_beyond_latch"])
 
-    def _start_stance(self, body: Pose2D) -> Stance:
+    def _start_stance(self, body: Pose2D, snapshot: Snapshot) -> Stance:
         """The feet: measured (/feet) when the robot reports them; else where the last plan
         left them if the base stands at that stance's midpoint (the plan was walked); else
         the nominal stance around the base."""
-        feet = self.inputs.feet
+        feet = snapshot.feet
         if feet is not None:
             left, right = feet
             return Stance(Footstep(left.x, left.y, left.yaw, Foot.LEFT), Footstep(right.x, right.y, right.yaw, Foot.RIGHT))
-        planned = self.planned_stance
+        planned = snapshot.planned_stance
         if planned is not None:
             middle = planned.body_pose
             if math.hypot(middle.x - body.x, middle.y - body.y) < 0.03 and \
@@ -206,17 +247,21 @@ class FootstepPlannerNode(Node):
         return door_geometry_from_estimate(estimate, DoorOpening(request.opening), request.door_angle,
                                            self.parameters["handle_standoff"])
 
-    def _answer(self, request: FootstepRequest, status: OutcomeStatus, reason: str,
+    def _answer(self, request_id: int, goal: str, status: OutcomeStatus, reason: str,
                 planning_time: float = 0.0, details: dict | None = None) -> None:
-        outcome = PlanningOutcome(request.request_id, status, reason, planning_time, details or {})
+        outcome = PlanningOutcome(request_id, status, reason, planning_time, without_non_finite(details or {}))
         self.outcome_pub.publish(String(data=encode(outcome)))
-        line = f"request {request.request_id} ({request.goal}): {status.value} in {planning_time * 1000:.1f} ms"
+        line = f"request {request_id} ({goal}): {status.value} in {planning_time * 1000:.1f} ms"
         if status is OutcomeStatus.SUCCESS:  # rclpy forbids one call site logging at two severities
             self.get_logger().info(line)
         else:
             self.get_logger().warning(f"{line}: {reason}")
         self.heartbeat.update(Health.OK if status is OutcomeStatus.SUCCESS else Health.WARN,
-                              f"last: {request.goal} {status.value}", last_planning_ms=round(planning_time * 1000, 2))
+                              f"last: {goal} {status.value}", last_planning_ms=round(planning_time * 1000, 2))
+
+    def destroy_node(self) -> None:
+        self.desk.close()
+        super().destroy_node()
 
 
 def contract_footsteps(start: Stance, plan: FootstepPlan) -> list[FootPlacement]:

@@ -3,7 +3,9 @@
     bag_record OUTPUT [--storage sqlite3|mcap] [--topics /a /b]   (default: every topic)
 
 Subscribes with raw (serialized) callbacks, so messages are stored byte-identical; new
-topics are picked up while recording. Ctrl-C / SIGTERM closes the bag cleanly.
+topics are picked up while recording. Ctrl-C / SIGTERM closes the bag cleanly. An output
+that exists or cannot be created ends with one line and exit code 7
+(:mod:`door_bringup.bags.exit_codes`).
 """
 
 from __future__ import annotations
@@ -15,16 +17,18 @@ from pathlib import Path
 from rclpy.node import Node
 
 from door_bringup.bags.player import qos_for
-from door_bringup.bags.storage import BagWriter, StorageFormat
+from door_bringup.bags.exit_codes import exit_code_for
+from door_bringup.bags.storage import BagError, BagWriter, StorageFormat
 from door_contract.converters.diagnostics import Health
 from door_contract.node_support import Heartbeat, run_node
 from door_contract.topics import interface_class
 
 
 class BagRecorder(Node):
-    def __init__(self, output: Path, storage: StorageFormat, topics: tuple[str, ...] | None) -> None:
+    def __init__(self, writer: BagWriter, output: Path, storage: StorageFormat,
+                 topics: tuple[str, ...] | None) -> None:
         super().__init__("bag_recorder")
-        self.writer = BagWriter(output, storage)
+        self.writer = writer
         self.wanted = set(topics) if topics else None
         self.subscriptions_by_topic = {}
         self.count = 0
@@ -63,7 +67,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--storage", choices=[s.value for s in StorageFormat], default="sqlite3")
     parser.add_argument("--topics", nargs="+", default=None)
     args, ros_args = parser.parse_known_args(argv)
-    return run_node(lambda: BagRecorder(args.output, StorageFormat(args.storage),
+    try:  # created before the node, so a bad output is one line and exit code 7, not a traceback
+        writer = BagWriter(args.output, StorageFormat(args.storage))
+    except BagError as error:
+        print(f"bag_record: {error}", file=sys.stderr)
+        return exit_code_for(error)
+    return run_node(lambda: BagRecorder(writer, args.output, StorageFormat(args.storage),
                                         tuple(args.topics) if args.topics else None), ros_args)
 
 

@@ -17,13 +17,29 @@ from enum import Enum
 from pathlib import Path
 
 import yaml
-from rosbags.rosbag2 import StoragePlugin, Writer
+from rosbags.rosbag2 import StoragePlugin, Writer, WriterError
 from rosbags.rosbag2.storage_mcap import McapReader
 from rosbags.typesys import Stores, get_typestore
 
 
 class BagError(RuntimeError):
     """A bag that cannot be read or written: missing files, unknown storage."""
+
+
+class BagNotFoundError(BagError):
+    """Nothing at the path is a bag (no metadata.yaml, no .db3/.mcap file)."""
+
+
+class BagMetadataError(BagError):
+    """metadata.yaml is not YAML, lacks keys, or names files that are missing or unknown."""
+
+
+class BagStorageError(BagError):
+    """A storage file is truncated or corrupt (sqlite: malformed image; mcap: bad records)."""
+
+
+class BagWriteError(BagError):
+    """A bag cannot be created: the output exists, or its folder cannot be written."""
 
 
 class StorageFormat(str, Enum):
@@ -51,12 +67,18 @@ def _storage_files(bag: Path) -> list[Path]:
     if bag.is_file():
         return [bag]
     if not metadata.is_file():
-        raise BagError(f"{bag} is neither a bag folder with metadata.yaml nor a .db3/.mcap file")
-    info = yaml.safe_load(metadata.read_text())["rosbag2_bagfile_information"]
-    files = [bag / name for name in info["relative_file_paths"]]
+        raise BagNotFoundError(f"{bag} is neither a bag folder with metadata.yaml nor a .db3/.mcap file")
+    try:
+        info = yaml.safe_load(metadata.read_text())["rosbag2_bagfile_information"]
+        files = [bag / str(name) for name in info["relative_file_paths"]]
+    except yaml.YAMLError as error:
+        raise BagMetadataError(f"{metadata} is not YAML ({str(error).splitlines()[0]})") from None
+    except (KeyError, TypeError) as error:
+        raise BagMetadataError(f"{metadata} lacks rosbag2_bagfile_information.relative_file_paths "
+                               f"({type(error).__name__}: {error})") from None
     for path in files:
         if not path.is_file():
-            raise BagError(f"{bag}: storage file {path.name} listed in metadata.yaml is missing")
+            raise BagMetadataError(f"{bag}: storage file {path.name} listed in metadata.yaml is missing")
     return files
 
 
@@ -69,18 +91,24 @@ def _sqlite_messages(path: Path) -> Iterator[BagMessage]:
             "JOIN topics ON messages.topic_id = topics.id ORDER BY messages.timestamp, messages.id")
         for name, type_name, timestamp, data in rows:
             yield BagMessage(name, type_name, int(timestamp), bytes(data))
+    except sqlite3.Error as error:
+        raise BagStorageError(f"{path.name} is not a readable rosbag2 sqlite3 file ({error})") from None
     finally:
         connection.close()
 
 
 def _mcap_messages(path: Path) -> Iterator[BagMessage]:
-    reader = McapReader(path)
-    reader.open()
+    reader, opened = McapReader(path), False
     try:
+        reader.open()
+        opened = True
         for connection, timestamp, data in reader.messages(reader.connections):
             yield BagMessage(connection.topic, connection.msgtype, int(timestamp), bytes(data))
+    except Exception as error:  # rosbags raises ReaderError, struct and Unicode errors on bad records
+        raise BagStorageError(f"{path.name} is not a readable mcap file ({type(error).__name__}: {error})") from None
     finally:
-        reader.close()
+        if opened:
+            reader.close()
 
 
 def read_messages(bag: Path | str, topics: Iterable[str] | None = None) -> Iterator[BagMessage]:
@@ -93,7 +121,7 @@ def read_messages(bag: Path | str, topics: Iterable[str] | None = None) -> Itera
         elif path.suffix == ".mcap":
             streams.append(_mcap_messages(path))
         else:
-            raise BagError(f"unknown storage file {path.name} (expected .db3 or .mcap)")
+            raise BagMetadataError(f"unknown storage file {path.name} (expected .db3 or .mcap)")
     for message in heapq.merge(*streams, key=lambda m: m.timestamp_ns):
         if wanted is None or message.topic in wanted:
             yield message
@@ -112,10 +140,15 @@ class BagWriter:
 
     def __init__(self, path: Path | str, storage: StorageFormat = StorageFormat.SQLITE3) -> None:
         plugin = StoragePlugin.SQLITE3 if storage is StorageFormat.SQLITE3 else StoragePlugin.MCAP
+        if Path(path).exists():
+            raise BagWriteError(f"{path} exists already: choose a new output folder")
         self._writer = Writer(Path(path), version=9, storage_plugin=plugin)
         self._typestore = get_typestore(Stores.ROS2_JAZZY)
         self._connections: dict[str, object] = {}
-        self._writer.open()
+        try:
+            self._writer.open()
+        except (OSError, WriterError) as error:
+            raise BagWriteError(f"cannot create {path} ({error})") from None
 
     def write(self, topic: str, type_name: str, timestamp_ns: int, data: bytes) -> None:
         connection = self._connections.get(topic)
