@@ -14,11 +14,11 @@ TrajOpt (Schulman et al.) solves it by SQP on the exact l1 penalty
    ``Q3`` residuals), constraints by their Jacobians ``H``, ``G``.
 2. **QP** (:mod:`door_trajopt.qp_layout`) with slacks for the l1 terms
    (``L1_PENALTY``, TrajOpt) or, the default ``HARD``, the linearised
-   constraints as hard rows -- slacks pinned to zero, with an elastic (l1)
-   re-solve when the linearisation is infeasible inside the box -- and a
+   constraints as hard rows -- a QP without slack variables, with an elastic
+   (l1, slack) re-solve when the linearisation is infeasible inside the box -- and a
    box trust region ``|d_i| <= Delta`` intersected with the joint limits.
-   OSQP is set up once per solver with the structural sparsity and only
-   ``update``-d afterwards; it warm-starts from the previous solution.
+   OSQP is set up once per solver and layout with the structural sparsity and
+   only ``update``-d afterwards; it warm-starts from the previous solution.
 3. **Accept** on the ratio ``rho = (phi(xi) - phi(xi + d)) / (phi(xi) - m(d))``
    of true to model merit decrease: grow ``Delta`` on good steps, shrink it
    on bad ones.
@@ -284,15 +284,17 @@ class SqpSolver:
         self._options = options if options is not None else SqpOptions()
         self._evaluator = ProblemEvaluator.for_problem(problem)
         self._quadratic_hessian = self._evaluator.objective.quadratic_hessian()
-        self._layout = QpLayout.build(
+        patterns = (
             self._evaluator.equalities.pattern(),
             self._evaluator.inequalities.pattern(),
             self._hessian_pattern(),
         )
+        # slack layout for the l1 mode and elastic re-solves; HARD solves without slacks
+        self._layouts = {slacks: QpLayout.build(*patterns, slacks=slacks) for slacks in (True, False)}
         self._lower = self._evaluator.lower_bounds()
         self._upper = self._evaluator.upper_bounds()
         self._pinned = self._evaluator.pinned_variables()
-        self._qp: osqp.OSQP | None = None
+        self._qps: dict[bool, osqp.OSQP] = {}
 
     @property
     def options(self) -> SqpOptions:
@@ -504,20 +506,21 @@ class SqpSolver:
     def _solve_qp(
         self, model: ConvexModel, state: SqpState, shift: ConstraintShift, elastic: bool = False
     ) -> QpStep:
-        """Update the persistent OSQP workspace and return the step ``d``."""
-        workspace = self._load(model, state, shift, elastic)
-        result = self._polished_solve(workspace)
-        hard = self._options.constraint_handling is ConstraintHandling.HARD and not elastic
-        if hard and result.info.status_val in INFEASIBLE_STATUSES:
-            workspace.update(
-                l=self._lower_bounds(model, state, shift),
-                u=self._upper_bounds(model, state, shift, elastic=True),
-            )
-            result = self._polished_solve(workspace)
+        """Update the persistent OSQP workspace and return the step ``d``.
+
+        HARD mode solves the slack-free QP; only when its linearisation is infeasible
+        inside the box is the elastic (slack) QP solved instead.
+        """
+        slacks = elastic or self._options.constraint_handling is ConstraintHandling.L1_PENALTY
+        result = self._polished_solve(self._load(model, state, shift, slacks))
+        if not slacks and result.info.status_val in INFEASIBLE_STATUSES:
+            slacks = True
+            result = self._polished_solve(self._load(model, state, shift, slacks))
         usable = result.info.status_val in SOLVED_STATUSES and np.all(np.isfinite(result.x))
+        layout = self._layouts[slacks]
         if not usable:
-            return QpStep.zero(self._layout.n_variables)
-        return self._qp_step(result.x, result.y)
+            return QpStep.zero(layout.n_variables)
+        return self._qp_step(result.x, result.y, layout)
 
     def _polished_solve(self, workspace: osqp.OSQP) -> SimpleNamespace:
         """Solve; if OSQP's polishing failed (degenerate active set), refine ADMM.
@@ -541,8 +544,8 @@ class SqpSolver:
         workspace.update_settings(eps_abs=options.qp_tolerance, eps_rel=options.qp_tolerance)
         return refined
 
-    def _qp_step(self, solution: FloatArray, duals: FloatArray) -> QpStep:
-        layout = self._layout
+    @staticmethod
+    def _qp_step(solution: FloatArray, duals: FloatArray, layout: QpLayout) -> QpStep:
         n_rows = layout.n_equality + layout.n_inequality
         multipliers = np.abs(duals[:n_rows])
         slack = np.sum(np.abs(solution[layout.n_variables :]))
@@ -553,30 +556,32 @@ class SqpSolver:
         )
 
     def _load(
-        self, model: ConvexModel, state: SqpState, shift: ConstraintShift, elastic: bool
+        self, model: ConvexModel, state: SqpState, shift: ConstraintShift, slacks: bool
     ) -> osqp.OSQP:
-        """Set OSQP up on first use; afterwards only ``update`` the values."""
-        layout, options = self._layout, self._options
+        """Set OSQP up on first use of a layout; afterwards only ``update`` the values."""
+        layout, options = self._layouts[slacks], self._options
         point = model.point
         q = layout.linear_term(point.gradient, state.penalty)
-        lower = self._lower_bounds(model, state, shift)
-        upper = self._upper_bounds(model, state, shift, elastic=elastic)
-        if self._qp is None:
-            self._qp = self._setup(model, q, lower, upper)
-            return self._qp
-        self._qp.update(
+        lower = self._lower_bounds(model, state, shift, layout)
+        upper = self._upper_bounds(model, state, shift, layout)
+        workspace = self._qps.get(slacks)
+        if workspace is None:
+            self._qps[slacks] = self._setup(model, q, lower, upper, layout)
+            return self._qps[slacks]
+        workspace.update(
             q=q,
             l=lower,
             u=upper,
             Px=layout.p_values(model.hessian, options.slack_curvature),
             Ax=layout.a_values(point.equality_jacobian, point.inequality_jacobian),
         )
-        return self._qp
+        return workspace
 
     def _setup(
-        self, model: ConvexModel, q: FloatArray, lower: FloatArray, upper: FloatArray
+        self, model: ConvexModel, q: FloatArray, lower: FloatArray, upper: FloatArray,
+        layout: QpLayout,
     ) -> osqp.OSQP:
-        layout, options = self._layout, self._options
+        options = self._options
         workspace = osqp.OSQP()
         workspace.setup(
             layout.p_matrix(model.hessian, options.slack_curvature),
@@ -612,10 +617,9 @@ class SqpSolver:
         return lower, upper
 
     def _lower_bounds(
-        self, model: ConvexModel, state: SqpState, shift: ConstraintShift
+        self, model: ConvexModel, state: SqpState, shift: ConstraintShift, layout: QpLayout
     ) -> FloatArray:
         step_lower, _ = self._step_box(model, state)
-        layout = self._layout
         return np.concatenate(
             [
                 -shift.equality,
@@ -626,18 +630,11 @@ class SqpSolver:
         )
 
     def _upper_bounds(
-        self, model: ConvexModel, state: SqpState, shift: ConstraintShift, elastic: bool
+        self, model: ConvexModel, state: SqpState, shift: ConstraintShift, layout: QpLayout
     ) -> FloatArray:
         _, step_upper = self._step_box(model, state)
-        hard = self._options.constraint_handling is ConstraintHandling.HARD and not elastic
-        slack_cap = 0.0 if hard else np.inf
         return np.concatenate(
-            [
-                -shift.equality,
-                -shift.inequality,
-                step_upper,
-                np.full(self._layout.n_slacks, slack_cap),
-            ]
+            [-shift.equality, -shift.inequality, step_upper, np.full(layout.n_slacks, np.inf)]
         )
 
 
