@@ -86,7 +86,17 @@ class SparsityPattern:
         return rows, cols
 
     def gather(self, matrix: sp.spmatrix, what: str) -> FloatArray:
-        """Values of ``matrix`` in key order; raises if a non-zero lies outside."""
+        """Values of ``matrix`` in key order; raises if a non-zero lies outside.
+
+        A canonical row-major CSR matrix whose stored entries are exactly the pattern
+        (the block Jacobians of :mod:`door_trajopt.waypoint_constraints` are) gives its
+        data as it is; anything else is matched key by key.
+        """
+        if not self.column_major and sp.issparse(matrix) and matrix.format == "csr" \
+                and matrix.nnz == self.nnz and matrix.has_canonical_format:
+            rows = np.repeat(np.arange(matrix.shape[0], dtype=np.int64), np.diff(matrix.indptr))
+            if np.array_equal(rows * self.shape[1] + matrix.indices, self.keys):
+                return np.array(matrix.data, dtype=np.float64)
         coo = sp.coo_matrix(matrix)
         values = np.zeros(self.nnz)
         if coo.nnz == 0:

@@ -442,8 +442,11 @@ class SqpSolver:
 
     def _convexify(self, values: PointValues) -> ConvexModel:
         point = self._evaluator.model(values)
+        residuals = self._evaluator.objective.residual_models(values.free)
+        if not residuals:  # the constant Hessian itself: OSQP's P needs no update
+            return ConvexModel(point, self._quadratic_hessian)
         hessian = self._quadratic_hessian
-        for residual in self._evaluator.objective.residual_models(values.free):
+        for residual in residuals:
             hessian = hessian + residual.weight * (residual.jacobian.T @ residual.jacobian)
         return ConvexModel(point, sp.csr_matrix(hessian))
 
@@ -568,13 +571,11 @@ class SqpSolver:
         if workspace is None:
             self._qps[slacks] = self._setup(model, q, lower, upper, layout)
             return self._qps[slacks]
-        workspace.update(
-            q=q,
-            l=lower,
-            u=upper,
-            Px=layout.p_values(model.hessian, options.slack_curvature),
-            Ax=layout.a_values(point.equality_jacobian, point.inequality_jacobian),
-        )
+        changes = {"q": q, "l": lower, "u": upper,
+                   "Ax": layout.a_values(point.equality_jacobian, point.inequality_jacobian)}
+        if model.hessian is not self._quadratic_hessian:  # Gauss-Newton terms changed P
+            changes["Px"] = layout.p_values(model.hessian, options.slack_curvature)
+        workspace.update(**changes)
         return workspace
 
     def _setup(
