@@ -83,7 +83,8 @@ class MotionLibrary:
         iterations = self.max_iterations * min(1 + attempt, MAX_ATTEMPT_SCALE)
         solver = (SqpSolver(built.problem, SqpOptions(max_iterations=iterations,
                                                       constraint_tolerance=self.constraint_tolerance,
-                                                      cost_tolerance=self.cost_tolerance))
+                                                      cost_tolerance=self.cost_tolerance,
+                                                      constraint_curvature=True))
                   if backend is Backend.SQP else
                   ChompSolver(built.problem, ChompOptions(max_iterations=iterations,
                                                           constraint_tolerance=self.constraint_tolerance,

@@ -60,6 +60,7 @@ from door_trajopt.evaluation import (
     build_result,
 )
 from door_trajopt.problem import FloatArray, TrajectoryProblem, TrajoptError
+from door_trajopt.lagrangian_curvature import BlockCurvature, block_pattern
 from door_trajopt.qp_layout import QpLayout
 from door_trajopt.result import OptimizationResult
 from door_trajopt.validation import require_in_range, require_int_at_least
@@ -119,6 +120,10 @@ class SqpOptions:
     * ``qp_refine_tolerance`` -- OSQP accuracy of a warm-started re-solve when
       polishing failed (degenerate active set), ``[1e-14, 1e-2]``.
     * ``qp_max_iterations`` -- OSQP iteration cap, ``>= 25``.
+    * ``constraint_curvature`` -- add the block-diagonal quasi-Newton curvature of
+      the constraints (:mod:`door_trajopt.lagrangian_curvature`) to the QP's
+      Hessian; only for problems whose constraints each touch one waypoint.
+    * ``initial_curvature`` -- its blocks' start ``B_t = initial * I``, ``(0, 1e3]``.
     """
 
     constraint_handling: ConstraintHandling = ConstraintHandling.HARD
@@ -141,6 +146,8 @@ class SqpOptions:
     qp_tolerance: float = 1e-6
     qp_refine_tolerance: float = 1e-9
     qp_max_iterations: int = 20000
+    constraint_curvature: bool = False
+    initial_curvature: float = 1e-2
 
     def __post_init__(self) -> None:
         owner = type(self).__name__
@@ -166,6 +173,7 @@ class SqpOptions:
         require_in_range(owner, "qp_tolerance", self.qp_tolerance, 1e-14, 1e-2)
         require_in_range(owner, "qp_refine_tolerance", self.qp_refine_tolerance, 1e-14, 1e-2)
         require_int_at_least(owner, "qp_max_iterations", self.qp_max_iterations, 25)
+        require_in_range(owner, "initial_curvature", self.initial_curvature, 0.0, 1e3, low_open=True)
 
     def _check_trust_region(self, owner: str) -> None:
         require_in_range(
@@ -248,6 +256,7 @@ class QpStep:
     step: FloatArray
     max_multiplier: float
     slack: float
+    multipliers: FloatArray | None = None  # of the H and G rows (OSQP's y)
 
     @classmethod
     def zero(cls, size: int) -> QpStep:
@@ -275,6 +284,7 @@ class StepOutcome:
     predicted: float
     actual: float
     box_limited: bool
+    multipliers: FloatArray | None = None
 
 
 class SqpSolver:
@@ -284,6 +294,7 @@ class SqpSolver:
         self._options = options if options is not None else SqpOptions()
         self._evaluator = ProblemEvaluator.for_problem(problem)
         self._quadratic_hessian = self._evaluator.objective.quadratic_hessian()
+        self._curvature: BlockCurvature | None = None
         patterns = (
             self._evaluator.equalities.pattern(),
             self._evaluator.inequalities.pattern(),
@@ -304,7 +315,11 @@ class SqpSolver:
     def _hessian_pattern(self) -> sp.csr_matrix:
         residual = self._evaluator.objective.residual_pattern().astype(np.float64)
         gauss_newton = residual.T @ residual
-        return (abs(self._quadratic_hessian) + abs(gauss_newton)).astype(bool).tocsr()
+        pattern = abs(self._quadratic_hessian) + abs(gauss_newton)
+        if self._options.constraint_curvature:
+            problem = self._evaluator.problem
+            pattern = pattern + block_pattern(problem.n_free, problem.n_dof).astype(np.float64)
+        return pattern.astype(bool).tocsr()
 
     # --- public entry -------------------------------------------------------
 
@@ -319,6 +334,9 @@ class SqpSolver:
     def _run(self, guess: FloatArray, started: float) -> OptimizationResult:
         evaluator, options = self._evaluator, self._options
         free = evaluator.clip_to_limits(evaluator.problem.free_vector(guess))
+        if options.constraint_curvature:  # every solve starts from the same model
+            problem = evaluator.problem
+            self._curvature = BlockCurvature.start(problem.n_free, problem.n_dof, options.initial_curvature)
         values = evaluator.values(free)
         penalty = self._initial_penalty(self._convexify(values))
         state = SqpState(values, options.initial_trust_radius, penalty, 0)
@@ -413,7 +431,7 @@ class SqpSolver:
             if outcome.accepted:
                 if self._converged_step(outcome, state):
                     return state, True
-                model = self._convexify(state.values)
+                model = self._convexify(state.values, model, outcome.multipliers)
             elif state.trust_radius < options.min_trust_radius:
                 return self._collapsed(state), True
         return state, False
@@ -440,15 +458,29 @@ class SqpSolver:
     def _feasible(self, values: PointValues) -> bool:
         return self._evaluator.violation(values).amount <= self._options.constraint_tolerance
 
-    def _convexify(self, values: PointValues) -> ConvexModel:
+    def _convexify(self, values: PointValues, previous: ConvexModel | None = None,
+                   multipliers: FloatArray | None = None) -> ConvexModel:
+        """The model at ``values``; with ``constraint_curvature``, after updating the blocks
+        from the step ``previous`` → ``values`` at the QP's ``multipliers``."""
         point = self._evaluator.model(values)
-        residuals = self._evaluator.objective.residual_models(values.free)
-        if not residuals:  # the constant Hessian itself: OSQP's P needs no update
-            return ConvexModel(point, self._quadratic_hessian)
         hessian = self._quadratic_hessian
+        if self._curvature is not None:
+            if previous is not None and multipliers is not None:
+                self._update_curvature(previous.point, point, multipliers)
+            hessian = hessian + self._curvature.matrix()
+        residuals = self._evaluator.objective.residual_models(values.free)
+        if not residuals and self._curvature is None:  # the constant Hessian: P needs no update
+            return ConvexModel(point, self._quadratic_hessian)
         for residual in residuals:
             hessian = hessian + residual.weight * (residual.jacobian.T @ residual.jacobian)
         return ConvexModel(point, sp.csr_matrix(hessian))
+
+    def _update_curvature(self, old: PointModel, new: PointModel, multipliers: FloatArray) -> None:
+        """``y = (J_new − J_old)ᵀ λ`` over the equality and inequality rows."""
+        k_eq = old.equality_jacobian.shape[0]
+        change = (new.equality_jacobian - old.equality_jacobian).T @ multipliers[:k_eq] + \
+            (new.inequality_jacobian - old.inequality_jacobian).T @ multipliers[k_eq:]
+        self._curvature.update(new.values.free - old.values.free, np.asarray(change).reshape(-1))
 
     # --- one trust-region trial ---------------------------------------------
 
@@ -465,7 +497,7 @@ class SqpSolver:
         predicted = reference - model.model_merit(qp_step.step, state.penalty, model.shift())
         box_limited = float(np.max(np.abs(qp_step.step), initial=0.0)) >= 0.99 * state.trust_radius
         if predicted <= self._improvement_floor(state):
-            return StepOutcome(state, False, predicted, 0.0, box_limited)
+            return StepOutcome(state, False, predicted, 0.0, box_limited, qp_step.multipliers)
         trial = self._trial(model, qp_step.step)
         if reference - trial.merit(state.penalty) < options.acceptance_ratio * predicted:
             trial = self._corrected_trial(model, state, qp_step.step, trial)
@@ -474,7 +506,7 @@ class SqpSolver:
         radius = self._next_radius(state.trust_radius, actual / predicted, qp_step.step)
         values = trial if accepted else model.values
         state = replace(state, values=values, trust_radius=radius)
-        return StepOutcome(state, accepted, predicted, actual, box_limited)
+        return StepOutcome(state, accepted, predicted, actual, box_limited, qp_step.multipliers)
 
     def _trial(self, model: ConvexModel, step: FloatArray) -> PointValues:
         return self._evaluator.values(self._evaluator.clip_to_limits(model.values.free + step))
@@ -556,6 +588,7 @@ class SqpSolver:
             np.asarray(solution[: layout.n_variables]),
             float(np.max(multipliers, initial=0.0)),
             float(slack),
+            np.array(duals[:n_rows]),
         )
 
     def _load(
