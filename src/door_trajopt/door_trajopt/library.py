@@ -46,6 +46,7 @@ class MotionPlan:
     attempts: int
     planning_time_s: float
     initial_guess: np.ndarray | None = None  # (n, m) the guess the result was optimised from
+    guess_time_s: float = 0.0  # building the problem and its IK-keyed initial guess
 
     @property
     def succeeded(self) -> bool:
@@ -79,6 +80,7 @@ class MotionLibrary:
         if motion.holds_handle:
             setup = anchored_to_hand(setup, start_chain)
         built = build_motion(motion, setup, start_chain, self.options)
+        guess_time = time.perf_counter() - started
         rng = np.random.default_rng([self.seed, variant] + ([attempt] if attempt else []))
         iterations = self.max_iterations * min(1 + attempt, MAX_ATTEMPT_SCALE)
         solver = (SqpSolver(built.problem, SqpOptions(max_iterations=iterations,
@@ -106,7 +108,8 @@ class MotionLibrary:
             timed = time_parameterise(result.trajectory, built.problem.dof_names, limits)
             path = JointPath(timed.times, built.chain.joint_names, timed.positions[:, :k], timed.velocities[:, :k])
         final = tuple(float(v) for v in result.trajectory[-1, k:])
-        return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started, used_guess)
+        return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started, used_guess,
+                          guess_time)
 
     def clear_cache(self) -> None:
         """Forget the last feasible trajectories (the next plans start cold)."""
