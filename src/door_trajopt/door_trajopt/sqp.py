@@ -74,6 +74,8 @@ STAGE_PROGRESS = 1e-3
 """Relative decrease of the linearised violation below which the run is infeasible."""
 PINNED_LIMIT_MARGIN = 1e-6
 """Widening (rad, m) of the joint limits of pinned variables in the QP box."""
+OSQP_RHO_INTERVAL = 50
+"""ADMM iterations between OSQP's step-size (rho) adaptations (what its timing rule picked here)."""
 INFEASIBLE_STATUSES = (
     osqp.SolverStatus.OSQP_PRIMAL_INFEASIBLE,
     osqp.SolverStatus.OSQP_PRIMAL_INFEASIBLE_INACCURATE,
@@ -629,6 +631,9 @@ class SqpSolver:
             max_iter=options.qp_max_iterations,
             polishing=True,
             warm_starting=True,
+            # OSQP's default (0) sets the interval from the measured set-up time, so its
+            # iterates, and the SQP's, could depend on the CPU load; a fixed one cannot
+            adaptive_rho_interval=OSQP_RHO_INTERVAL,
         )
         return workspace
 
