@@ -71,5 +71,14 @@ class BlockCurvature:
                                    - np.einsum("ti,tj->tij", bs[index], bs[index]) / sbs[index, None, None])
 
     def matrix(self) -> sp.csr_matrix:
-        """The block-diagonal matrix (free variables, row-major waypoint layout)."""
-        return sp.block_diag(list(self.blocks), format="csr")
+        """The block-diagonal matrix (free variables, row-major waypoint layout).
+
+        Built straight from the blocks' data: row ``t*size + i`` holds block ``t``'s row
+        ``i`` in columns ``t*size .. t*size + size - 1`` (``sp.block_diag`` of the list
+        took 0.7 ms per SQP iteration).
+        """
+        n_blocks, size, _ = self.blocks.shape
+        rows = n_blocks * size
+        columns = (np.arange(rows) // size * size)[:, None] + np.arange(size)[None, :]
+        return sp.csr_matrix((self.blocks.reshape(-1), columns.reshape(-1), np.arange(rows + 1) * size),
+                             shape=(rows, rows))
