@@ -46,7 +46,8 @@ class MotionPlan:
     attempts: int
     planning_time_s: float
     initial_guess: np.ndarray | None = None  # (n, m) the guess the result was optimised from
-    guess_time_s: float = 0.0  # building the problem and its IK-keyed initial guess
+    guess_time_s: float = 0.0  # building the problem and its IK-keyed initial guess (wall)
+    guess_cpu_s: float = 0.0  # the same in this process's CPU time (a loaded machine's wall time is longer)
 
     @property
     def succeeded(self) -> bool:
@@ -73,14 +74,14 @@ class MotionLibrary:
         automatic retry): a repeat does not reuse the cached trajectory, tries ``attempt``
         more random guesses, salted by the attempt, and allows more iterations per guess.
         Raises :class:`DoorStateOutOfRange` for a door state outside the door's stops."""
-        started = time.perf_counter()
+        started, started_cpu = time.perf_counter(), time.process_time()
         if isinstance(attempt, bool) or not isinstance(attempt, int) or attempt < 0:
             raise TrajoptError(f"attempt must be an integer >= 0, got {attempt!r}")
         check_start_door(setup.start_door)
         if motion.holds_handle:
             setup = anchored_to_hand(setup, start_chain)
         built = build_motion(motion, setup, start_chain, self.options)
-        guess_time = time.perf_counter() - started
+        guess_time, guess_cpu = time.perf_counter() - started, time.process_time() - started_cpu
         rng = np.random.default_rng([self.seed, variant] + ([attempt] if attempt else []))
         iterations = self.max_iterations * min(1 + attempt, MAX_ATTEMPT_SCALE)
         solver = (SqpSolver(built.problem, SqpOptions(max_iterations=iterations,
@@ -109,7 +110,7 @@ class MotionLibrary:
             path = JointPath(timed.times, built.chain.joint_names, timed.positions[:, :k], timed.velocities[:, :k])
         final = tuple(float(v) for v in result.trajectory[-1, k:])
         return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started, used_guess,
-                          guess_time)
+                          guess_time, guess_cpu)
 
     def clear_cache(self) -> None:
         """Forget the last feasible trajectories (the next plans start cold)."""
