@@ -37,6 +37,23 @@ HINGE_LIMITS = (0.0, 1.75)  # rad, door stop
 HANDLE_LIMITS = (0.0, 1.0)  # rad, handle stop
 
 
+class DoorStateOutOfRange(TrajoptError):
+    """A door state (hinge θ, handle φ) outside the door's stops: no motion can start there."""
+
+
+def check_start_door(start_door: tuple[float, float]) -> None:
+    """Raise :class:`DoorStateOutOfRange` unless θ ∈ HINGE_LIMITS and φ ∈ HANDLE_LIMITS.
+
+    Outside them the problem is unsolvable, and not cheaply so: a turn_handle at
+    θ = 1e6 rad put the grasp pose anywhere on the circle, every IK and every initial
+    guess ran to its budget, and the optimiser was blocked for 80 s.
+    """
+    for name, value, (low, high) in (("hinge angle", start_door[0], HINGE_LIMITS),
+                                     ("handle angle", start_door[1], HANDLE_LIMITS)):
+        if not (np.isfinite(value) and low <= value <= high):
+            raise DoorStateOutOfRange(f"door {name} {value!r} rad is outside the door's range [{low:g}, {high:g}]")
+
+
 class Motion(str, Enum):
     APPROACH_HANDLE = "approach_handle"
     TURN_HANDLE = "turn_handle"
