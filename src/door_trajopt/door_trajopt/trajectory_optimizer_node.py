@@ -41,7 +41,7 @@ from door_robot.profile import Side, load_profile
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import Backend, MotionLibrary, MotionPlan
-from door_trajopt.motions import Motion, MotionOptions, MotionSetup, start_door_for, support_polygon
+from door_trajopt.motions import DoorStateOutOfRange, Motion, MotionOptions, MotionSetup, start_door_for, support_polygon
 from door_trajopt.parameters import NODE_NAME, OPTIMIZER_PARAMETERS
 
 
@@ -104,7 +104,7 @@ class TrajectoryOptimizerNode(Node):
             request.request_id, request.motion, request.backend, status, reason, plan, stamp)
         if finished.dropped:
             return answer(OutcomeStatus.SUPERSEDED, finished.dropped)
-        if isinstance(finished.error, (PlanningRefused, RobotModelError, ContractError)):
+        if isinstance(finished.error, (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)):
             return answer(OutcomeStatus.REJECTED, str(finished.error))
         if finished.error is not None:  # a bug must end in a failure outcome, not a dead node
             self.get_logger().error(f"request {request.request_id} crashed the optimiser: {finished.error!r}")
@@ -149,7 +149,8 @@ class TrajectoryOptimizerNode(Node):
         setup = MotionSetup(chain, door, estimate.width, support_polygon(chain),
                             start_door_for(motion, request.door_angle, self.library.options))
         self.get_logger().info(f"planning {motion.value} with the {side.value} arm ({backend.value})")
-        return self.library.plan(motion, setup, chain.chain_of(body_q), backend, variant=request.request_id)
+        return self.library.plan(motion, setup, chain.chain_of(body_q), backend, variant=request.request_id,
+                                 attempt=request.attempt)
 
     def _answer(self, request_id: int, motion: str, backend: str, status: OutcomeStatus, reason: str,
                 plan: MotionPlan | None = None, proposal_stamp_ns: int = -1) -> None:
