@@ -52,6 +52,7 @@ class Measurement:
     soles: Mapping[Foot, np.ndarray]  # 4×4 sole poses
     cop: np.ndarray | None  # (2,) centre of pressure of the floor contacts, None in the air
     wrench: ContactWrench  # net external force on the robot (door contacts and grasps)
+    trunk_rotation: np.ndarray | None = None  # 3×3 base orientation (an IMU), None: not measured
 
 
 def level_frame(frame: np.ndarray) -> np.ndarray:
@@ -94,10 +95,11 @@ class WalkingController:
         self._trajectory = None
         self._walk_time = 0.0
         self._support_side: str | None = None
+        self._anchor_foot = Foot.LEFT
         self._feet: dict[Foot, np.ndarray] = {}
         self._trunk_target = np.zeros(3)
-        self._trunk_from = np.zeros(3)
-        self._trunk_in_stance = np.zeros(3)  # trunk over the feet midpoint, in the stance frame
+        self._com_from = np.zeros(3)
+        self._com_target = np.zeros(3)
         self._settle_time = 0.0
         self._trunk_rotation = np.eye(3)
         self.steps_planned = 0
@@ -125,13 +127,7 @@ class WalkingController:
         self._upper.update({k: float(v) for k, v in joint_positions.items() if k in self._upper})
         self.robot.set_T_world_frame(PLACO_TRUNK_FRAME, np.asarray(base_pose, dtype=float))
         self.robot.update_kinematics()
-        self._feet = {Foot.LEFT: level_frame(self.robot.get_T_world_left()),
-                      Foot.RIGHT: level_frame(self.robot.get_T_world_right())}
-        stance = self._stance_frame()
-        trunk = np.array(self.robot.get_T_world_frame(PLACO_TRUNK_FRAME)[:3, 3])
-        self._trunk_in_stance = stance[:3, :3].T @ (trunk - stance[:3, 3])
-        self._stand_here()
-        self._settle_time = self.gait.settle_s  # placed standing: nothing to settle
+        self._stand_here(settle=False)  # placed standing: nothing to settle
 
     def _stance_frame(self) -> np.ndarray:
         """Feet midpoint on the floor, mean heading."""
@@ -141,18 +137,24 @@ class WalkingController:
         frame[:2, 3] = 0.5 * (left[:2, 3] + right[:2, 3])
         return frame
 
-    def _stand_here(self) -> None:
-        """Hold the soles where the model has them; bring the trunk over their midpoint, at
-        the height and offset it had standing at the start (a smooth blend of ``settle_s``)."""
+    def _stand_here(self, settle: bool = True) -> None:
+        """Hold the soles where the model has them. After a walk (``settle``) the CoM is first
+        brought over their midpoint (a smooth blend of ``settle_s``, CoM task, as the walk
+        pattern tracked it); then, and at start-up, the trunk is held where it is — the pelvis
+        stays put relative to the feet, so arm trajectories planned from it execute as planned."""
         self.mode, self._trajectory, self._support_side = BalanceMode.STANDING, None, None
         self._feet = {Foot.LEFT: level_frame(self.robot.get_T_world_left()),
                       Foot.RIGHT: level_frame(self.robot.get_T_world_right())}
-        self._trunk_from = np.array(self.robot.get_T_world_frame(PLACO_TRUNK_FRAME)[:3, 3])
         stance = self._stance_frame()
-        self._trunk_target = stance[:3, 3] + stance[:3, :3] @ self._trunk_in_stance
         self._trunk_rotation = stance[:3, :3]
-        self._settle_time = 0.0
-        self._tasks.trunk_mode = True
+        self._com_from = np.array(self.robot.com_world())
+        self._com_target = np.array([stance[0, 3], stance[1, 3], self._com_from[2]])
+        self._settle_time = 0.0 if settle else self.gait.settle_s
+        self._tasks.trunk_mode = settle
+        self._hold_trunk()
+
+    def _hold_trunk(self) -> None:
+        self._trunk_target = np.array(self.robot.get_T_world_frame(PLACO_TRUNK_FRAME)[:3, 3])
 
     # ------------------------------------------------------------------ commands
     def set_upper_body(self, targets: Mapping[str, float]) -> None:
@@ -192,7 +194,7 @@ class WalkingController:
             raise SimulationError("the walking pattern generator found no CoM trajectory")
         self._trajectory, self._walk_time, self._stopping = trajectory, 0.0, False
         self.steps_planned, self.steps_landed = len(footsteps) - 2, 0
-        self.mode, self._support_side = BalanceMode.WALKING, None
+        self.mode, self._support_side, self._anchor_foot = BalanceMode.WALKING, None, Foot.LEFT
         self._tasks.trunk_mode = False
         return float(trajectory.t_end)
 
@@ -224,7 +226,7 @@ class WalkingController:
             self._stand_references(measurement)
         self.robot.update_kinematics()
         self._solver.solve(True)
-        if self.mode is BalanceMode.WALKING and self._support_side is not None:
+        if self.mode is BalanceMode.WALKING:
             self.robot.ensure_on_floor()
         targets = {name: self.robot.get_joint(name) for name in self.joints.legs}
         targets.update(self._upper)
@@ -233,10 +235,18 @@ class WalkingController:
     def _stand_references(self, measurement: Measurement) -> None:
         offset = self.stabilizer.update(self.dt, self._com_reference(), measurement.wrench, measurement.cop,
                                         walking=False)
-        blend = 0.5 - 0.5 * math.cos(math.pi * min(1.0, self._settle_time / self.gait.settle_s))
-        self._settle_time += self.dt
-        trunk = (1.0 - blend) * self._trunk_from + blend * self._trunk_target
-        target = trunk + np.array([offset[0], offset[1], 0.0])
+        shift = np.array([offset[0], offset[1], 0.0])
+        if self.settling:
+            blend = 0.5 - 0.5 * math.cos(math.pi * min(1.0, self._settle_time / self.gait.settle_s))
+            self._settle_time += self.dt
+            self._tasks.trunk_mode = False
+            com = (1.0 - blend) * self._com_from + blend * self._com_target
+            self._tasks.update_tasks(self._feet[Foot.LEFT], self._feet[Foot.RIGHT], com + shift, self._trunk_rotation)
+            if not self.settling:  # settled: from now on the pelvis holds still
+                self._hold_trunk()
+            return
+        self._tasks.trunk_mode = True
+        target = self._trunk_target + shift
         self._tasks.update_tasks(self._feet[Foot.LEFT], self._feet[Foot.RIGHT], target, self._trunk_rotation)
 
     def _com_reference(self) -> np.ndarray:
@@ -332,7 +342,12 @@ class WalkingController:
         if side != self._support_side and self._support_side is not None:
             self.steps_landed += 1
         if side is not None:
-            self._anchor(Foot(side), measurement.soles[Foot(side)])
+            self._anchor_foot = Foot(side)
+        # anchored every tick on the foot that carries it (the last stance foot in double
+        # support): unanchored, the model drifted 25 cm from the robot in a final stance
+        self._anchor(self._anchor_foot, measurement.soles[self._anchor_foot])
+        if measurement.trunk_rotation is not None and self.gait.imu_feedback:
+            self.robot.update_from_imu(np.asarray(measurement.trunk_rotation, dtype=float))
         self._support_side = side
 
     def _anchor(self, foot: Foot, measured_sole: np.ndarray) -> None:

@@ -37,6 +37,7 @@ class GaitOptions:
     planned_timesteps: int = 500  # LIPM preview horizon in QP steps (≥ the plan's length)
     in_place_tolerance: float = 0.01  # m (and 2× this in rad): a first step this close is dropped
     settle_s: float = 1.0  # s to bring the trunk over the feet when a walk ends or stops
+    imu_feedback: bool = True  # orient the model's trunk as measured while walking (damps rocking)
 
     def __post_init__(self) -> None:
         check_ranges(self, {

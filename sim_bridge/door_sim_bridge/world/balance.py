@@ -39,7 +39,7 @@ class BalanceLoop:
     def measure(self) -> Measurement:
         soles = {FOOT_OF_SIDE[side]: self._robot.link_pose(link) for side, link in self._robot.profile.feet.items()}
         return Measurement(soles, centre_of_pressure(self._client, self._robot.body, self._floor),
-                           net_wrench(self._door_forces()))
+                           net_wrench(self._door_forces()), self._robot.base_pose()[:3, :3])
 
     def _door_forces(self) -> list[tuple[np.ndarray, np.ndarray]]:
         """Forces on the robot the stabiliser may lean against: every link's contacts with the
