@@ -30,6 +30,7 @@ from footstep_planner.footstep import Foot, Footstep
 from footstep_planner.geometry import (FloatArray, PackedPolygons, rectangle_axes,
                                        rectangle_corners, rectangles_overlap_polygons)
 from footstep_planner.options import FootstepPlannerOptions
+from footstep_planner.progress import StepEffects
 
 
 @dataclass(frozen=True)
@@ -229,10 +230,10 @@ class ActionSet:
     body_reach: float
 
     @property
-    def centre_shifts(self) -> FloatArray:
-        """(2K, 2) stance-centre shifts of all actions of both feet, in the support frame."""
-        return np.concatenate([table.centre - table.support_centre
-                               for table in self.tables.values()])
+    def step_effects(self) -> Mapping[Foot, StepEffects]:
+        """Per swing foot, how its actions move the stance centre (support frame) and turn."""
+        return MappingProxyType({foot: StepEffects(table.centre - table.support_centre, table.foot[:, 2])
+                                 for foot, table in self.tables.items()})
 
     @classmethod
     def from_options(cls, options: FootstepPlannerOptions) -> ActionSet:
