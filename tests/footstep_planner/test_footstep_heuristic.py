@@ -151,3 +151,14 @@ def test_turning_in_place_counts_its_steps() -> None:
     turns = math.ceil((math.pi / 2.0 - options.goal_yaw_tolerance) / planner.actions.max_turn)
     assert estimate >= options.step_cost * (1 + turns)
     assert ActionSet.from_options(options).max_turn == pytest.approx(options.max_turn)
+
+
+def test_a_side_step_cannot_also_turn_the_body_to_walk_forwards() -> None:
+    """1 m sideways, TALOS: without turning a pair of steps advances at most 0.131 m; turning
+    to walk forwards costs steps that advance little. The bound that couples each step's
+    advance to its own turn needs at least 8 steps (one that let every step take the best
+    advance of any heading reachable by then said 7); the optimum is 13."""
+    planner = PLANNERS["talos"]
+    estimate = _heuristic(planner, Pose2D(0.0, 1.0, 0.0)).estimate_one(Pose2D(0.0, 0.0, 0.0), Foot.LEFT)
+    distance = 1.0 - planner.options.goal_position_tolerance
+    assert estimate >= planner.options.step_cost * (1 + 8) + planner.options.distance_weight * distance - 1e-9
