@@ -19,7 +19,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from footstep_planner.actions import ActionTable, is_reachable_step
+from footstep_planner.actions import ActionTable
+from footstep_planner.closed_set import ClosedSetGrid
 from footstep_planner.footprint import FootprintChecker
 from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
 from footstep_planner.geometry import Bounds, wrap_angle, wrap_angles
@@ -27,6 +28,7 @@ from footstep_planner.heuristic import FootstepHeuristic, is_goal_centre
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import FootstepPlan, PlanOutcome, PlanResult, failed
 from footstep_planner.pruning import LegPruning
+from footstep_planner.snapping import snapping_steps
 
 if TYPE_CHECKING:
     from footstep_planner.astar import FootstepPlanner
@@ -37,34 +39,6 @@ _NEAR_CELL = 0.25
 """Cell size (m) of the per-search cache of "is this expansion near an obstacle?"."""
 _PRIORITY_SCALE = 1e6
 """f values are compared as integers in units of 1e-6 cost (see ``Search._add``)."""
-
-
-@dataclass(frozen=True)
-class ClosedSetGrid:
-    """Integer keys of states: cell of the sole centre, yaw bin, foot.
-
-    key = ((ix * rows + iy) * yaw_bins + iyaw) * 2 + (1 for a left foot).
-    """
-
-    x0: float
-    y0: float
-    rows: int
-    resolution: float
-    yaw_bins: int
-
-    @classmethod
-    def over(cls, bounds: Bounds, options: FootstepPlannerOptions) -> ClosedSetGrid:
-        rows = math.ceil((bounds.y_max - bounds.y_min) / options.grid_resolution) + 1
-        yaw_bins = max(1, round(2.0 * math.pi / options.yaw_resolution))
-        return cls(bounds.x_min, bounds.y_min, rows, options.grid_resolution, yaw_bins)
-
-    def keys(self, x: np.ndarray, y: np.ndarray, yaw: np.ndarray, left: bool) -> list[int]:
-        """Keys of several soles of the same foot."""
-        column = np.floor((x - self.x0) / self.resolution).astype(np.int64)
-        row = np.floor((y - self.y0) / self.resolution).astype(np.int64)
-        bins = np.floor((yaw + math.pi) * (self.yaw_bins / (2.0 * math.pi)))
-        yaw_bin = bins.astype(np.int64) % self.yaw_bins  # the bins wrap: no need to wrap yaw
-        return (((column * self.rows + row) * self.yaw_bins + yaw_bin) * 2 + int(left)).tolist()
 
 
 @dataclass(frozen=True)
@@ -175,33 +149,6 @@ class Search:
             return False
         return not self._checker.footstep_collides(self._closing_step(index))
 
-    def _snapping_steps(self, last: Footstep) -> tuple[Footstep, ...]:
-        """Steps from the search's final stance (within the goal tolerance) onto the goal's
-        nominal stance. Feet alternate, so the foot that did not move last goes first; when
-        it cannot reach its target from there (a sideways shift towards it), it first steps
-        in place and the other foot leads. None when no sequence stays within the step
-        limits and clear of obstacles."""
-        options = self._options
-        target = Stance.nominal(self._goal, options.nominal_foot_separation)
-        if target.foot(last.foot) == last and target.foot(last.foot.other) == \
-                last.nominal_partner(options.nominal_foot_separation):
-            return ()
-        if self._checker.stance_collision(target) is not None:
-            return ()
-        in_place = last.nominal_partner(options.nominal_foot_separation)
-        for sequence in ((target.foot(last.foot.other), target.foot(last.foot)),
-                         (in_place, target.foot(last.foot), target.foot(last.foot.other))):
-            if self._walkable(last, sequence):
-                return sequence
-        return ()
-
-    def _walkable(self, support: Footstep, sequence: tuple[Footstep, ...]) -> bool:
-        for placed in sequence:
-            if not is_reachable_step(support, placed, self._options) or self._checker.footstep_collides(placed):
-                return False
-            support = placed
-        return True
-
     def _closing_step(self, index: int) -> Footstep:
         x, y, yaw, is_left = self._nodes[index]
         support = Footstep(x, y, yaw, Foot.LEFT if is_left else Foot.RIGHT)
@@ -300,7 +247,7 @@ class Search:
 
     def _success(self, start: Stance, index: int, expansions: int) -> PlanResult:
         steps = (*self._path(index), self._closing_step(index))
-        snap = self._snapping_steps(steps[-1]) if self._options.snap_to_goal else ()
+        snap = snapping_steps(steps[-1], self._goal, self._options, self._checker) if self._options.snap_to_goal else ()
         steps += snap
         cost = self._costs[index] + self._options.step_cost * (1 + len(snap))
         elapsed = time.perf_counter() - self._started
