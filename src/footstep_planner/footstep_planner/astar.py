@@ -93,7 +93,7 @@ class FootstepPlanner:
 
     def progress_table_within(self, yaw_window: float) -> ProgressTable:
         """The progress bounds of searches that keep their headings within ``yaw_window``
-        of the goal's (built on first use, ~10 ms, then kept: legs reuse a few windows)."""
+        of the goal's (built on first use, tens of ms, then kept: legs reuse a few windows)."""
         table = self._progress.get(yaw_window)
         if table is None:
             table = self._progress[yaw_window] = self._build_progress(yaw_window)
