@@ -111,7 +111,7 @@ class FootstepRequest:
     door_angle: float = 0.0
     door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
     door: str = ""  # the approved DoorEstimate itself (JSON), so a late-joining planner has it
-    attempt: int = 0  # 0 first try, +1 per repeat of the FSM state: a repeat may use a larger budget
+    attempt: int = 0  # 0 first try, +1 per repeat of the FSM state: a repeat searches with a larger budget
 
 
 @dataclasses.dataclass(frozen=True)
