@@ -51,6 +51,10 @@ def stop_node(process: subprocess.Popen) -> int:
     return process.wait(timeout=30)
 
 
+STILL_BASE = 2e-3
+"""m: the standing physical robot sways by a fraction of a millimetre; a step moves it by cm."""
+
+
 @dataclass(frozen=True)
 class RobotState:
     joints: dict[str, float]
@@ -150,10 +154,12 @@ class Observer:
         assert self.wait(lambda: all(self.pubs[t].get_subscription_count() > 0 for t in topics), 60.0)
 
     def walk_plan(self, steps: int, stride: float = 0.1) -> list[FootPlacement]:
-        """Straight ahead from where the feet stand: each foot ``stride`` beyond the other."""
+        """Straight ahead (+x) from where the feet stand: each foot ``stride`` beyond the other,
+        counted from the foot in front (a physical walk may end with the feet staggered)."""
         assert self.wait(lambda: self.feet is not None, 30.0)
         feet = {step.foot: step for step in self.feet}
-        return [FootPlacement(foot, feet[foot].x + stride * (index + 1), feet[foot].y, feet[foot].yaw)
+        front = max(step.x for step in self.feet)
+        return [FootPlacement(foot, front + stride * (index + 1), feet[foot].y, feet[foot].yaw)
                 for index, foot in enumerate(Foot.LEFT if i % 2 == 0 else Foot.RIGHT for i in range(steps))]
 
     def destroy(self) -> None:

@@ -16,7 +16,7 @@ from door_contract.payloads import (FootstepRequest, MotionRequest, OutcomeStatu
                                     encode)
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
 from door_contract.topics import Topics
-from fuzz_graph import ESTIMATE, Observer, start_node, stop_node
+from fuzz_graph import STILL_BASE, ESTIMATE, Observer, start_node, stop_node
 
 pytestmark = pytest.mark.ros
 
@@ -28,7 +28,7 @@ class FakePlanners:
     """Plays both planners (and is a required node): answers each request with a slow plan
     from where the robot is — ``steps`` footsteps, or the elbow 0.5 rad down in 5 s."""
 
-    def __init__(self, context, observer, steps=6):
+    def __init__(self, context, observer, steps=20):  # ~15 s of walking for the physical robot
         import rclpy
 
         self.node = rclpy.create_node(PLANNER, context=context)
@@ -112,15 +112,15 @@ def _walking(task):
 
 
 def _stopped_walk(task, start, max_steps=2):
-    """The walk's outcome is STOPPED after at most ``max_steps`` of its 6 and the base no
-    longer moves."""
+    """The walk's outcome is STOPPED after at most ``max_steps`` of its steps and the base no
+    longer moves (sub-millimetre sway of the physical robot aside)."""
     assert task.wait(lambda: any(o.status is OutcomeStatus.STOPPED for o in task.outcomes["execution"]), 20.0), \
         (task.outcomes["execution"], task.fsm.log.read_text()[-2000:])
     stopped = next(o for o in task.outcomes["execution"] if o.status is OutcomeStatus.STOPPED)
     steps_done = int(stopped.reason.split("after step ")[1].split(" ")[0])
     assert steps_done <= max_steps, stopped.reason  # the step in progress, no more
     held = task.settled_state().base
-    assert np.linalg.norm(task.settled_state(samples=25).base - held) < 1e-4
+    assert np.linalg.norm(task.settled_state(samples=25).base - held) < 2e-3
     assert np.linalg.norm(held - start) < 0.1 * (steps_done + 1)
     return stopped
 
@@ -137,7 +137,7 @@ def test_a_burst_of_approvals_answers_one_request(task):
     task.assert_lives(task.fsm, "fsm_supervisor")
     assert task.sent_plans == []  # the plan awaits its own approval: nothing was executed
     joints, base, door = task.settled_state().moved(start)
-    assert base < 1e-4 and joints < 3e-3 and door < 1e-3
+    assert base < STILL_BASE and joints < 3e-3 and door < 1e-3
 
 
 GARBAGE = ["", " ", "approve", "approve -1", "approve 1.0", "approve 99", "approve 1 2", "APPROVE #1", "pause 1",
@@ -155,13 +155,13 @@ def test_garbage_from_the_operator_changes_nothing(task):
     assert task.requests[-1].startswith("WALK_TO_DOOR #2")
     task.assert_lives(task.fsm, "fsm_supervisor")
     joints, base, door = task.settled_state().moved(start)
-    assert base < 1e-4 and joints < 3e-3 and door < 1e-3
+    assert base < STILL_BASE and joints < 3e-3 and door < 1e-3
 
 
 def test_pause_stops_the_walk(task):
     start = _walking(task)
     task.publish("OPERATOR", "pause")
-    _stopped_walk(task, start)
+    _stopped_walk(task, start, max_steps=8)  # the stop's latency, the step in the air and the one beside it
     assert task.wait(lambda: task.states[-1] == "PAUSED", 10.0)
 
 
@@ -186,7 +186,7 @@ def test_a_lost_required_node_stops_the_walk(task):
     task.planners.destroy()  # the planner node is gone
     task.planners.destroy = lambda: None
     assert task.wait(lambda: task.states[-1] == "FAILED", 20.0), task.fsm.log.read_text()[-2000:]
-    _stopped_walk(task, start, max_steps=3)  # the graph notices a lost node within ~1 s
+    _stopped_walk(task, start, max_steps=10)  # the graph notices a lost node within ~1 s (4 sim s)
     assert f"/{PLANNER} is gone" in task.fsm.log.read_text()
 
 
@@ -194,5 +194,5 @@ def test_a_killed_supervisor_stops_the_walk_through_the_dead_man(task):
     start = _walking(task)
     task.fsm.send_signal(signal.SIGKILL)
     task.fsm.wait(timeout=10)
-    stopped = _stopped_walk(task, start, max_steps=5)  # 2 s of silence, then the step in progress
+    stopped = _stopped_walk(task, start, max_steps=14)  # 3 s of silence (~12 sim s), then the stance
     assert "dead-man" in stopped.reason

@@ -7,13 +7,13 @@ import pytest
 from door_contract.converters.trajectory import JointPath
 from door_contract.payloads import OutcomeStatus
 from door_sim_bridge.execution import ExecutionPhase, FootstepExecution, TrajectoryExecution
-from door_sim_bridge.world import DoorWorld
+from door_sim_bridge.world import DoorWorld, RobotMode, WorldConfig
 from test_sim_execution import ARM, _start_over, _walk_plan
 
 
 @pytest.fixture(scope="module")
 def world():
-    with DoorWorld() as sim:
+    with DoorWorld(WorldConfig(robot_mode=RobotMode.KINEMATIC)) as sim:  # the physical stop: test_sim_walking
         yield sim
 
 

@@ -108,16 +108,27 @@ def test_a_stop_ends_the_walk_at_the_next_stable_stance(world):
     assert world.walking
     result = execution.cancel("operator stop")
     assert result.status is OutcomeStatus.FAILURE and result.reason == "operator stop"
-    for _ in range(int(3.0 * world.config.physics_rate)):
-        if not world.walking:
+    for _ in range(int((3.0 + world.config.gait.settle_s) * world.config.physics_rate)):
+        if not world.walking:  # stepped and settled (the CoM over the feet)
             break
         world.step()
     assert not world.walking and not world.fallen
-    world.step(int(world.config.gait.settle_s * world.config.physics_rate))  # trunk over the feet
     before = world.base_pose()
     world.step(int(1.0 * world.config.physics_rate))  # standing still now
     assert np.linalg.norm(world.base_pose()[:2, 3] - before[:2, 3]) < 0.01
     assert world.base_pose()[0, 3] < plan[-1].x - 0.8  # it did not walk the whole plan
+
+
+def test_a_stop_before_the_first_step_stands_where_it_is(world):
+    plan = straight_plan(world, 0.2, 6)
+    feet = world.foot_placements()
+    execution = FootstepExecution(world, plan)
+    execution.advance(int(0.3 * world.config.physics_rate))  # in the first double support
+    execution.stop("operator pause")
+    result = execution.run(max_steps=int(3.0 * world.config.physics_rate))
+    assert result.status is OutcomeStatus.STOPPED and "after step 0 of" in result.reason
+    after = world.foot_placements()
+    assert all(math.hypot(after[f].x - feet[f].x, after[f].y - feet[f].y) < 0.01 for f in feet)
 
 
 def test_a_200_N_shove_at_the_torso_is_a_fall_reported_as_fell(world):

@@ -257,6 +257,9 @@ class WalkingController:
         trajectory, t = self._trajectory, self._walk_time
         if self._stopping:
             self._replan_stop(t)
+            if self.mode is BalanceMode.STANDING:
+                self._stand_references(measurement)
+                return
             trajectory = self._trajectory
         if t >= trajectory.t_end:
             self._stand_here()
@@ -289,7 +292,10 @@ class WalkingController:
         self._stopping = False
         trajectory = self._trajectory
         current = trajectory.get_support(t)
-        if current.end or current.start:
+        if current.end:  # already ending at a stance
+            return
+        if current.start:  # no foot has moved yet: stand right here
+            self._stand_here()
             return
         if current.is_both():
             leading_side = trajectory.get_next_support(t, 1).side()
@@ -311,6 +317,8 @@ class WalkingController:
         replanned = self._generator.replan(supports, trajectory, t)
         if replanned.replan_success:
             self._trajectory = replanned
+        else:  # try again at the next tick (the pattern may not be solvable at this instant)
+            self._stopping = True
             self.steps_planned = self.steps_landed + (1 if current.is_both() else 2)
 
     def _footstep(self, side, frame: np.ndarray) -> placo.Footstep:
