@@ -31,7 +31,9 @@ import cv2
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
-from door_detection.door_pairs import DoorCandidate, corners_3d, door_surface_points, find_doors
+from door_detection.door_pairs import (DoorCandidate, corners_3d, door_surface_points, edge_width,
+                                      find_doors)
+from door_detection.edges import refine_door_edges
 from door_detection.errors import InputError
 from door_detection.estimate import (DetectionMode, DetectionOutcome, DetectionResult, DoorEstimate,
                                      Side)
@@ -120,7 +122,8 @@ def detect_automatic(rgb: np.ndarray, depth: np.ndarray, intrinsics: CameraIntri
 def _detect(frame: Frame, options: DetectionOptions, hinge_side: Side | None,
             clock: StageClock) -> tuple[DoorEstimate, int]:
     found = _find_door_and_handle(frame, options, hinge_side, clock)
-    candidate, lines = found.candidate, found.lines
+    candidate = found.candidate
+    lines = refine_door_edges(frame.rgb, found.lines, candidate.left, candidate.right)
     surface = door_surface_points(candidate, lines, frame.depth, frame.intrinsics, options)
     plane, fraction = refine_plane(surface, candidate.plane, options.plane_inlier_distance) \
         if len(surface) >= options.min_region_points else (candidate.plane, candidate.plane_fraction)
@@ -135,20 +138,9 @@ def _detect(frame: Frame, options: DetectionOptions, hinge_side: Side | None,
     corners = corners_3d(candidate, lines, plane, frame.intrinsics)
     clock.mark("plane+grasp")
     confidence = float(np.clip(min(candidate.plane_fraction, fraction), 0.0, 1.0))
-    estimate = DoorEstimate(handle, plane.normal, hinge, width_between_edges(corners), corners, confidence,
+    estimate = DoorEstimate(handle, plane.normal, hinge, edge_width(corners), corners, confidence,
                             DetectionMode.AUTOMATIC, 1, up)
     return estimate, found.candidates
-
-
-def width_between_edges(corners: np.ndarray) -> float:
-    """Door width (m): the mean of the bottom and top edge lengths of the corners (bottom-left,
-    bottom-right, top-right, top-left) cut from the image edges' rays by the refined plane.
-
-    The pairing stage's width (between the RANSAC lines of depth read
-    ``edge_depth_offset`` px *inside* each edge) is short by 2·offset·z/f — 3–4 cm at
-    2–3 m — and is only a gate; the ray-plane corners sit on the image edges themselves.
-    """
-    return 0.5 * float(np.linalg.norm(corners[1] - corners[0]) + np.linalg.norm(corners[2] - corners[3]))
 
 
 def _door_up(candidate: DoorCandidate) -> np.ndarray:

@@ -38,6 +38,7 @@ def _ranges() -> dict[str, FieldRange]:
         "edge_depth_offset": r(0, 30, "px"),
         "door_width_min": r(0.3, 2.0, "m"),
         "door_width_max": r(0.3, 2.5, "m"),
+        "door_width_tolerance": r(0.0, 0.2, "m"),
         "min_depth": r(0.0, 5.0, "m", low_open=True),
         "max_depth": r(0.5, 100.0, "m"),
         "max_depth_noise": r(0.0, 1.0, "m", low_open=True),
@@ -147,6 +148,11 @@ class DetectionOptions:
     """Narrowest door accepted (m), [0.3, 2]. Sec. III-A: 90 ± 10 cm (DRC door 36 in)."""
     door_width_max: float = 1.00
     """Widest door accepted (m), [0.3, 2.5], >= door_width_min. Sec. III-A: 90 ± 10 cm."""
+    door_width_tolerance: float = 0.03
+    """The pairing gate accepts widths this much outside [door_width_min, door_width_max] (m),
+    [0, 0.2]. Not in the paper: the gate measures between the Hough lines, which lie up to
+    ~2 px outside the leaf (1.5 cm at 3 m with f = 415 px; a 1.00 m leaf measured 1.005–1.009 m);
+    the width reported is measured again on the sub-pixel edges (:mod:`~door_detection.edges`)."""
     min_depth: float = 0.3
     """Nearer depth readings are invalid (m), (0, 5]."""
     max_depth: float = 8.0
