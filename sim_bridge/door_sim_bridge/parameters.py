@@ -35,4 +35,11 @@ BRIDGE_PARAMETERS = (
                   minimum=-2.0, maximum=2.0),
     ParameterSpec("stance_yaw", 0.0, "robot yaw relative to facing the door", unit="rad",
                   minimum=-1.0, maximum=1.0),
+    ParameterSpec("door_colour", (0.55, 0.33, 0.17), "door leaf colour, RGB in [0, 1]"),
+    ParameterSpec("frame_colour", (0.92, 0.92, 0.88), "door frame (jambs, header) colour, RGB in [0, 1]"),
+    ParameterSpec("handle_colour", (0.85, 0.70, 0.15), "lever handle colour, RGB in [0, 1]"),
+    ParameterSpec("wall_colour", (0.45, 0.58, 0.72), "wall colour, RGB in [0, 1]"),
+    ParameterSpec("floor_colour", (0.30, 0.30, 0.30), "floor colour, RGB in [0, 1]"),
+    ParameterSpec("light_direction", (-50.0, 30.0, 100.0), "towards the directional light, odom axes "
+                  "(any non-zero length; default: the renderer's own)"),
 )
