@@ -11,7 +11,7 @@ import pytest
 from door_detection.errors import DetectionError
 from door_detection.estimate import DetectionMode
 from door_detection.view_search import (Neck, NeckAxis, SearchStep, View, ViewSearch, ViewSearchOptions,
-                                        pan_step_for, plan_views)
+                                        head_move_time, pan_step_for, plan_views)
 from helpers_detection import angle_deg, handle_error
 
 TALOS_LIKE = Neck(NeckAxis("pan", -1.309, 1.309, 1.0), NeckAxis("tilt", -0.262, 0.785, 1.0))
@@ -32,6 +32,8 @@ def test_the_talos_neck_is_found_in_the_urdf_and_its_signs_look_left_and_down(ta
     assert (neck.pan.joint, neck.tilt.joint) == ("head_2_joint", "head_1_joint")
     assert (neck.pan.lower, neck.pan.upper) == pytest.approx((-1.309, 1.309), abs=1e-3)
     assert (neck.tilt.lower, neck.tilt.upper) == pytest.approx((-0.2618, 0.7854), abs=1e-3)
+    assert neck.pan.velocity == neck.tilt.velocity == 1.0
+    assert head_move_time(neck, View(0.0, 0.3), View(-0.9, 0.6)) == pytest.approx(0.9)
     frame = talos_kinematics.profile.head_camera_frame
     q0 = talos_kinematics.walking_q
     forward = talos_kinematics.frame_pose(q0, frame)[:3, 2]                # optical z

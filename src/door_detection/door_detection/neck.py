@@ -6,10 +6,11 @@ to its arm chains). With J the camera frame's Jacobian at the walking posture
 (LOCAL_WORLD_ALIGNED, base axes), a joint's angular column ω is its axis in the base frame:
 the **pan** joint is the one nearest the camera with ω within 15° of ±z (sign = sign ω_z:
 turning about +z looks left), the **tilt** joint the one with ω within 15° of ±y (turning
-about +y looks down: R_y(θ)·x = (cos θ, 0, −sin θ)). Limits are the URDF's.
+about +y looks down: R_y(θ)·x = (cos θ, 0, −sin θ)). Position and speed limits are the
+URDF's.
 
 On TALOS this gives pan = ``head_2_joint`` (axis z, ±1.31 rad) and tilt = ``head_1_joint``
-(axis y, −0.26 … 0.79 rad) — the reverse of what their numbering suggests.
+(axis y, −0.26 … 0.79 rad) — the reverse of what their numbering suggests — both at 1 rad/s.
 """
 
 from __future__ import annotations
@@ -45,5 +46,5 @@ def _axis(kinematics: object, axes: dict[str, np.ndarray], names: list[str], com
         if abs(float(axis[component])) >= limit:
             index = int(kinematics.joint_indices([name])[0])
             return NeckAxis(name, float(kinematics.lower_limits[index]), float(kinematics.upper_limits[index]),
-                            math.copysign(1.0, float(axis[component])))
+                            math.copysign(1.0, float(axis[component])), float(kinematics.velocity_limits[index]))
     return None

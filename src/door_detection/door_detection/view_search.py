@@ -31,18 +31,19 @@ from door_detection.errors import DetectionError
 
 @dataclass(frozen=True)
 class NeckAxis:
-    """One neck joint: its URDF name and limits (rad), and ``sign`` = joint angle per radian
-    of look (+1 or −1: which way the joint turns the view left or down)."""
+    """One neck joint: its URDF name, limits (rad) and speed limit (rad/s), and ``sign`` =
+    joint angle per radian of look (+1 or −1: which way the joint turns the view left or down)."""
 
     joint: str
     lower: float
     upper: float
     sign: float
+    velocity: float = math.inf
 
     def __post_init__(self) -> None:
-        if not self.lower <= self.upper or self.sign not in (-1.0, 1.0):
-            raise DetectionError(f"neck joint {self.joint}: limits [{self.lower}, {self.upper}] "
-                                 f"and sign {self.sign} are not a joint")
+        if not self.lower <= self.upper or self.sign not in (-1.0, 1.0) or not self.velocity > 0.0:
+            raise DetectionError(f"neck joint {self.joint}: limits [{self.lower}, {self.upper}], sign "
+                                 f"{self.sign} and speed {self.velocity} rad/s are not a joint")
 
     def joint_angle(self, look: float) -> float:
         """The joint angle of a look angle, clipped to the limits."""
@@ -83,6 +84,14 @@ class View:
         if neck.tilt is not None:
             targets[neck.tilt.joint] = neck.tilt.joint_angle(self.tilt)
         return targets
+
+
+def head_move_time(neck: Neck, start: View, end: View) -> float:
+    """Shortest time (s) for the neck to go from ``start`` to ``end`` at its joints' speed
+    limits: max over joints of |Δq|/q̇_max (a joint trajectory must not be faster)."""
+    times = [abs(axis.joint_angle(b) - axis.joint_angle(a)) / axis.velocity
+             for axis, a, b in ((neck.pan, start.pan, end.pan), (neck.tilt, start.tilt, end.tilt)) if axis is not None]
+    return max(times, default=0.0)
 
 
 @dataclass(frozen=True)
