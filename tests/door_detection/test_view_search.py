@@ -140,3 +140,20 @@ def test_a_door_in_view_is_confirmed_from_two_frames_half_a_second_apart(talos_k
     assert outcome.estimate.mode is DetectionMode.OPERATOR
     assert handle_error(outcome.estimate.handle_position, grasp[:3, 3]) < 0.02
     assert np.isnan(outcome.estimate.width)
+
+
+def test_without_a_pan_joint_the_body_turns_in_place(talos_kinematics) -> None:
+    """A neck that only tilts (Atlas v4's): the search turns the body, left first, then right,
+    and confirms the door 0.9 rad to the right."""
+    from door_detection.neck import neck_of
+    from door_detection.search_trial import run_search
+    from door_detection.trial_scenes import TrialScene, world_config
+    from door_sim_bridge.world import DoorWorld
+
+    tilt_only = Neck(None, neck_of(talos_kinematics).tilt)
+    with DoorWorld(world_config(TrialScene(2.5, 0.9))) as world:
+        outcome = run_search(world, tilt_only, search_options=ViewSearchOptions(body_turn_step=0.6))
+        base, grasp = world.base_pose(), world.handle_grasp_pose()
+    assert outcome.estimate is not None and outcome.views == 4          # home, tilted, left, right
+    assert math.atan2(base[1, 0], base[0, 0]) == pytest.approx(0.3)
+    assert handle_error(outcome.estimate.handle_position, grasp[:3, 3]) < 0.02
