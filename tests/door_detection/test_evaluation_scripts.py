@@ -83,3 +83,17 @@ def test_a_search_without_a_door_is_judged_a_failure() -> None:
     result = judge(SearchOutcome(None, 12, 6, 9.0, (0.02,) * 12), np.zeros(3), np.array([-1.0, 0, 0]), 0.9)
     assert not result.success and result.outcome == "no door confirmed" and math.isnan(result.handle_error)
     assert (result.frames, result.views) == (12, 6)
+
+
+def test_table_two_in_two_processes_gives_the_same_trials_in_the_same_order() -> None:
+    from door_detection import table_two
+    from door_detection.neck import neck_of
+    from door_robot.kinematics import RobotKinematics
+    from door_robot.profile import load_profile
+
+    neck = neck_of(RobotKinematics(load_profile("talos")))
+    grid = table_two.TableTwoGrid(distances=(2.0,), yaws=(-0.2,), trials=2, seed=5)
+    alone = table_two.run_table(grid, neck, progress=False)
+    parallel = table_two.run_table(grid, neck, progress=False, jobs=2)
+    assert [r.scenario for r in parallel] == [r.scenario for r in alone] == grid.scenes()
+    assert [r.automatic.handle_error for r in parallel] == [r.automatic.handle_error for r in alone]

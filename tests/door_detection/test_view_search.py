@@ -67,7 +67,7 @@ def test_views_sweep_the_pan_alternately_then_tilt_then_turn_the_body() -> None:
 
 def test_limits_clip_the_plan_and_a_missing_pan_leaves_body_turns() -> None:
     narrow = Neck(NeckAxis("pan", -0.5, 0.5, -1.0), NeckAxis("tilt", -0.2, 0.4, 1.0))
-    views = plan_views(narrow, View(0.0, 0.3), ViewSearchOptions(max_body_turns=0))
+    views = plan_views(narrow, View(0.0, 0.3), ViewSearchOptions(pan_step=0.45, max_body_turns=0))
     assert [v.pan for v in views] == pytest.approx([0.0, 0.45, -0.45] * 2)
     assert views[3].tilt == pytest.approx(0.4)                            # 0.3 + 0.3 clipped to the limit
     assert View(0.45, 0.3).joint_targets(narrow) == pytest.approx({"pan": -0.45, "tilt": 0.3})
@@ -119,7 +119,7 @@ def test_a_door_edge_out_of_view_at_the_start_is_found_by_the_search(talos_kinem
         grasp, truth = world.handle_grasp_pose(), world.door_ground_truth()
         head = world.joint_positions()[neck.pan.joint]
     assert outcome.estimate is not None and outcome.views > 1
-    assert abs(head) > 0.4                                                  # the head did turn
+    assert abs(head) >= 0.3 - 1e-3                                          # the head did turn
     assert handle_error(outcome.estimate.handle_position, grasp[:3, 3]) < 0.02
     assert angle_deg(outcome.estimate.normal, truth.normal) < 2.0
     assert abs(outcome.estimate.width - truth.width) < 0.01

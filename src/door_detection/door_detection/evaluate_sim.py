@@ -145,6 +145,7 @@ def _arguments(argv: Sequence[str] | None) -> argparse.Namespace:
     parser.add_argument("--trials", type=int, default=2, help="head search: randomised starts per cell")
     parser.add_argument("--lateral", type=float, default=0.6, help="head search: lateral offsets up to ± this (m)")
     parser.add_argument("--camera-rate", type=float, default=2.0, help="head search: frames per sim second")
+    parser.add_argument("--jobs", type=int, default=1, help="head search: trials run in this many processes")
     parser.add_argument("--colours", choices=("cycle", "all"), default="cycle",
                         help="single frames: cycle colour pairs over the cells, or run every pair in every cell")
     parser.add_argument("--noise", type=float, nargs="+", default=None,
@@ -169,7 +170,7 @@ def _table_two(args: argparse.Namespace) -> str:
                             grid.max_depth_noise, grid.seed)
     settings = SearchSettings(camera_rate=args.camera_rate)
     neck = neck_of(RobotKinematics(load_profile("talos")))
-    results = run_table(grid, neck, progress=not args.no_progress, settings=settings)
+    results = run_table(grid, neck, progress=not args.no_progress, jobs=max(args.jobs, 1), settings=settings)
     return report(results, grid, settings)
 
 

@@ -107,10 +107,13 @@ class DetectionOptions:
     """Bilateral filter range sigma (grey levels), (0, 255]."""
     bilateral_sigma_space: float = 3.0
     """Bilateral filter spatial sigma (px of the scaled image), (0, 50]."""
-    canny_low: int = 15
+    canny_low: int = 10
     """Canny hysteresis low threshold (gradient magnitude), [1, 1000] (Sec. III-A)."""
-    canny_high: int = 45
-    """Canny hysteresis high threshold (gradient magnitude), [1, 1000], >= canny_low."""
+    canny_high: int = 30
+    """Canny hysteresis high threshold (gradient magnitude), [1, 1000], >= canny_low. A grey-blue
+    leaf in a grey frame differs by ~9 levels in each YCrCb channel, which OpenCV's 3×3 Sobel
+    (L1 norm) makes a gradient of ~36: 45 lost that edge (the leaf then paired with the far
+    jamb's outer edge, 1.05 m, and was refused); 30 keeps it."""
     hough_rho: float = 1.0
     """Probabilistic Hough distance resolution (px of the scaled image), (0, 10]."""
     hough_theta_deg: float = 0.5

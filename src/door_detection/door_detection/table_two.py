@@ -13,7 +13,10 @@ and the width error.
 
 from __future__ import annotations
 
+import contextlib
+import functools
 import math
+import multiprocessing
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -99,15 +102,24 @@ def run_trial(scene: TrialScene, neck: Neck, options: DetectionOptions | None = 
     return TrialResult(scene, results[DetectionMode.AUTOMATIC], results[DetectionMode.OPERATOR])
 
 
-def run_table(grid: TableTwoGrid, neck: Neck, progress: bool = True, **kwargs: object) -> list[TrialResult]:
-    """Every trial of the grid (progress bar on stderr with the running success rate)."""
+def run_table(grid: TableTwoGrid, neck: Neck, progress: bool = True, jobs: int = 1,
+              **kwargs: object) -> list[TrialResult]:
+    """Every trial of the grid, in ``jobs`` processes (each trial builds its own world), in the
+    grid's order; a progress bar on stderr shows the running automatic success rate."""
     scenes = grid.scenes()
     bar = ProgressBar(len(scenes), enabled=progress)
-    results = []
-    for scene in scenes:
-        results.append(run_trial(scene, neck, **kwargs))
-        good = sum(r.automatic.success for r in results) / len(results)
-        bar.advance(f"d={scene.distance:.1f} yaw={scene.yaw:+.1f} auto {good:.0%}")
+    trial = functools.partial(run_trial, neck=neck, **kwargs)
+    results: list[TrialResult] = []
+    with contextlib.ExitStack() as stack:
+        if jobs > 1:
+            pool = stack.enter_context(multiprocessing.get_context("spawn").Pool(jobs))
+            outcomes = pool.imap(trial, scenes)
+        else:
+            outcomes = map(trial, scenes)
+        for result in outcomes:
+            results.append(result)
+            good = sum(r.automatic.success for r in results) / len(results)
+            bar.advance(f"d={result.scenario.distance:.1f} yaw={result.scenario.yaw:+.1f} auto {good:.0%}")
     bar.close()
     return results
 

@@ -7,7 +7,7 @@ the door (the paper's "orientation ... about the vertical where the robot is sta
 seed 001 Sec. V); the door and its appearance are drawn over the Monte-Carlo's full ranges
 (issue 13): width 0.80–1.00 m, handle height 0.85–1.10 m, push/pull, left/right hinge, depth
 noise k ≤ 0.005 (σ = k·z², 8 cm at 4 m), colours from the palettes below (a white leaf in a
-white wall and frame included), and a light from a random direction above the horizon.
+white wall and frame included), and a room light from a random direction in front of the wall.
 
 Only the evaluation and the tests import this module (it needs the sim).
 """
@@ -63,11 +63,19 @@ class TrialScene:
 
 
 def random_appearance(rng: np.random.Generator) -> Appearance:
-    """Colours drawn from the palettes; light azimuth uniform, elevation 20–80°."""
+    """Colours drawn from the palettes; the light above the robot's side of the wall.
+
+    The light's azimuth is within ±60° of −x (towards the robot), its elevation 30–70°: a room
+    light in front of the wall. TinyRenderer casts no shadows, so a light behind the wall
+    would still light the jambs' side faces while the faces towards the robot get ambient
+    light only — a scene no camera sees (a white leaf in a white frame then shows only one
+    side face of each jamb, a door-width apart but off by a jamb).
+    """
     def pick(palette: tuple[Colour, ...]) -> Colour:
         return palette[int(rng.integers(len(palette)))]
 
-    azimuth, elevation = rng.uniform(0.0, 2.0 * math.pi), math.radians(rng.uniform(20.0, 80.0))
+    azimuth = math.pi + math.radians(rng.uniform(-60.0, 60.0))
+    elevation = math.radians(rng.uniform(30.0, 70.0))
     light = (math.cos(elevation) * math.cos(azimuth), math.cos(elevation) * math.sin(azimuth), math.sin(elevation))
     return Appearance(pick(LEAF_COLOURS), pick(FRAME_COLOURS), pick(HANDLE_COLOURS), pick(WALL_COLOURS),
                       pick(FLOOR_COLOURS), light)

@@ -9,7 +9,7 @@ search here turns the head first — TALOS has a 2-DOF neck — then the body, i
   offset, then body turns of ±k·``body_turn_step`` (k = 1 … ``max_body_turns``, left
   first) with the pan sweep repeated at the home tilt. Neighbouring pans must overlap by a
   door's angular span, so that some view holds both edges: s ≤ FOV_h − span, the span of a
-  0.9 m door at 1 m being ~0.9 rad with its frame (:func:`pan_step_for`).
+  1.0 m door at 1 m being 1.02 rad with its frame (:func:`pan_step_for`).
 * **moving on** (:class:`ViewSearch`): a view is kept until a door is confirmed, or
   ``empty_frames_per_view`` frames taken there (after the head settled) gave no estimate at
   all, or ``frames_per_view`` gave estimates that never confirmed; the frames from all views
@@ -105,10 +105,10 @@ class ViewSearchOptions:
     """Frames after which a view is left when its estimates never confirm a door, [1, 100].
     Two agreeing frames confirm a clear door (``DetectionOptions.vote_min_agreeing``); noisy
     depth takes more, up to the vote's window of 10."""
-    pan_step: float = 0.45
+    pan_step: float = 0.3
     """Between neighbouring pans (rad), (0, π]. The graph's head camera sees 1.31 rad across
-    (640 px, f = 416 px); a door 1 m away spans up to ~0.9 rad, so 0.45 rad steps keep a view
-    with the whole door (:func:`pan_step_for`)."""
+    (640 px, f = 416 px); a 1.00 m door and its 6 cm jambs 1 m away span 1.02 rad, so 0.3 rad
+    steps keep a view with the whole door (:func:`pan_step_for`; 0.45 rad missed it there)."""
     max_pan: float = 1.2
     """Largest pan used (rad), [0, π] (TALOS's neck: ±1.31 rad)."""
     tilt_offsets: tuple[float, ...] = (0.3,)
