@@ -31,9 +31,8 @@ import cv2
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
-from door_detection.door_pairs import (DoorCandidate, corners_3d, door_surface_points, edge_width,
-                                      find_doors)
-from door_detection.edges import refine_door_edges
+from door_detection.door_pairs import DoorCandidate, corners_3d, door_surface_points, find_doors
+from door_detection.edges import edge_width, refine_door_edges
 from door_detection.errors import InputError
 from door_detection.estimate import (DetectionMode, DetectionOutcome, DetectionResult, DoorEstimate,
                                      Side)

@@ -4,7 +4,7 @@ For a pair of image lines (L left, R right) the paper's door D = (P1, P2, S_P) m
 satisfy (eq. 2):
 
 * 80 cm ≤ ‖P1 − P2‖ ≤ 100 cm: the image edges' rays, cut with the plane of the two edges'
-  RANSAC 3-D lines, are a door's width apart (:func:`edge_width`);
+  RANSAC 3-D lines, are a door's width apart (:func:`~door_detection.edges.edge_width`);
 * every P in S_P lies on one plane, (a − P)·b = 0: points sampled on the two image
   diagonals of the door back-project to within 5 cm of the plane spanned by the edges.
 
@@ -27,6 +27,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
+from door_detection.edges import edge_width
 from door_detection.lines import VerticalLines
 from door_detection.options import DetectionOptions
 from door_detection.plane import Line3D, Plane, depth_noise, pixel_rays, ransac_line, sample_depth
@@ -263,28 +264,6 @@ def door_surface_points(candidate: DoorCandidate, lines: VerticalLines, depth: n
     u = xl + t * (xr - xl)
     v = np.broadcast_to(rows[:, None], u.shape)
     return sample_depth(depth, intrinsics, u.ravel(), v.ravel())
-
-
-def edge_width(corners: np.ndarray) -> float:
-    """Door width (m): the distance between the door's two edges, the lines through the corners
-    bottom-left → top-left and bottom-right → top-right (the image edges' rays cut with the
-    door plane; corners ordered bottom-left, bottom-right, top-right, top-left).
-
-    With u the mean edge direction, w = ½ Σ ‖(r − l) − ((r − l)·u) u‖ over the bottom and top
-    corner pairs (l, r): the component across the edges only.  A corner pair lies on one
-    image *row*, which a pitched and yawed camera does not see as level: at 1.5 m and
-    0.3 rad the bottom corners were 0.30 m apart in height, and their plain distance made a
-    0.914 m leaf 0.939 m wide.  The edges' own RANSAC lines are no measure either: they are
-    fitted to depth read ``edge_depth_offset`` px *inside* the door, 2·offset·z/f short
-    (5.8 cm at 3 m with f = 415 px; a 0.84 m leaf failed the 0.80 m gate there, and the pair
-    of one leaf edge and the far jamb's outer edge, 0.91 m, was taken instead).
-    """
-    left, right = corners[3] - corners[0], corners[2] - corners[1]
-    up = left / np.linalg.norm(left) + np.sign(float(left @ right)) * right / np.linalg.norm(right)
-    up /= np.linalg.norm(up)
-    across = np.stack([corners[1] - corners[0], corners[2] - corners[3]])
-    across -= np.outer(across @ up, up)
-    return float(np.linalg.norm(across, axis=1).mean())
 
 
 def corners_3d(candidate: DoorCandidate, lines: VerticalLines, plane: Plane,
