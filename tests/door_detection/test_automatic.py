@@ -139,3 +139,23 @@ def test_narrow_and_wide_leaves_are_measured_within_a_centimetre(width) -> None:
         assert abs(result.estimate.width - width) < 0.01, (distance, yaw, result.estimate.width)
         in_odom = result.estimate.transformed(frame.camera_pose)
         assert handle_error(in_odom.handle_position, grasp[:3, 3]) < 0.02
+
+
+def test_a_faint_edge_seen_in_part_still_bounds_the_handle_search() -> None:
+    """Table II start 209 (white leaf, frame and wall, σ = 1.9 cm at 2 m), the head turned
+    0.6 rad right: the far jamb's faint line is found only above the handle; the handle is
+    searched again on the rows the other edge spans, and found."""
+    from door_detection.trial_scenes import Appearance, TrialScene, world_config
+    from door_sim_bridge.world import DoorWorld
+
+    white = (1.0, 1.0, 1.0)
+    look = Appearance(white, white, (0.85, 0.7, 0.15), white, (0.15, 0.15, 0.15), (-0.2857, 0.3862, 0.8771))
+    scene = TrialScene(2.0, 0.6, -0.2654, 0.9036, 0.8805, "push", "right", 0.00476, look, 209)
+    with DoorWorld(world_config(scene)) as world:
+        world.set_joint_targets({"head_2_joint": -0.6})
+        world.step(480)
+        frame, grasp = world.render(), world.handle_grasp_pose()
+    result = detect_automatic(frame.rgb, frame.depth, frame.intrinsics)
+    assert result.ok, result.reason
+    in_odom = result.estimate.transformed(frame.camera_pose)
+    assert handle_error(in_odom.handle_position, grasp[:3, 3]) < 0.02

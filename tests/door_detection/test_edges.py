@@ -48,3 +48,18 @@ def test_a_tilted_edge_keeps_its_slope() -> None:
 def test_without_contrast_the_hough_line_is_kept() -> None:
     flat = np.full((200, 300, 3), 180, np.uint8)
     assert refine_edge(flat, VerticalLines(np.array([[150.0, 20.0, 150.0, 180.0]])), 0, inside=1) is None
+
+
+def test_contrast_limited_equalisation_keeps_a_small_step_next_to_a_dominant_grey() -> None:
+    """A white scene (one grey, 179, almost everywhere) with a lit jamb face (190): plain
+    equalisation sends both to the top (254, 255); the contrast-limited one keeps a step."""
+    from door_detection.preprocessing import equalise_luma
+
+    luma = np.full((200, 300), 179, np.uint8)
+    luma[:, 150] = 190
+    luma[:, 200] = 153
+    plain = equalise_luma(luma, 0.0)
+    assert int(plain[0, 150]) - int(plain[0, 0]) <= 1
+    limited = equalise_luma(luma, 2.0)
+    assert int(limited[0, 150]) - int(limited[0, 0]) >= 10
+    assert int(limited[0, 0]) - int(limited[0, 200]) >= 20

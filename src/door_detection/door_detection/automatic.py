@@ -9,7 +9,8 @@ Pipeline, one frame:
    80–100 cm; duplicates merged; the plane between the edges validated on the two
    diagonals; normal = (line joining the edges) × (edge) (:mod:`~door_detection.door_pairs`);
 4. handle by colour statistics on the handle side (:mod:`~door_detection.handle`), on
-   the best candidates in turn until one has a handle;
+   the best candidates in turn until one has a handle (on the rows both edges span, then,
+   when one edge's line is shorter — a faint edge — on the rows either spans);
 5. the plane refined by robust least squares in inverse-depth space over ~3000 points of
    the door's surface (beyond the paper: the cross-product normal only seeds it; under
    stereo noise the fit is ~10× more precise, see :func:`~door_detection.plane.refine_plane`);
@@ -168,10 +169,11 @@ def _find_door_and_handle(frame: Frame, options: DetectionOptions, hinge_side: S
                            f"{sized} door-width pair(s) but none holds a plane between its edges", sized)
     for candidate in doors[: options.max_candidates]:
         ratio = float(candidate.left_edge.point[2] / candidate.right_edge.point[2])
-        blob = find_handle(frame.rgb, candidate.image_corners(lines), options, hinge_side, ratio)
-        if blob is not None:
-            clock.mark("handle")
-            return _Found(candidate, blob, lines, len(doors))
+        for outer in (False, True) if candidate.partly_seen else (False,):
+            blob = find_handle(frame.rgb, candidate.image_corners(lines, outer), options, hinge_side, ratio)
+            if blob is not None:
+                clock.mark("handle")
+                return _Found(candidate, blob, lines, len(doors))
     clock.mark("handle")
     raise StageFailure(DetectionOutcome.NO_HANDLE,
                        f"{len(doors)} door(s) found but no handle blob on the "

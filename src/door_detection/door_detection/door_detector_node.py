@@ -43,7 +43,7 @@ from door_detection.payload import contract_estimate
 from door_detection.voting import Voter
 
 STREAMS = ("color", "depth", "info", "pose")
-VOTE_PARAMETERS = ("vote_frames", "vote_min_agreeing", "vote_handle_standard_error", "vote_normal_standard_error_deg")
+VOTE_PARAMETERS = ("vote_frames", "vote_min_agreeing", "vote_handle_confidence", "vote_normal_confidence_deg")
 """Node parameters that are the sequential vote's DetectionOptions fields of the same name."""
 
 

@@ -45,9 +45,10 @@ class DoorCandidate:
     """A door hypothesis that passed the width and plane checks.
 
     ``left``/``right`` index the image lines; ``top``/``bottom`` are the rows both edges
-    span; ``plane`` has its normal towards the camera (cross product of the line joining
-    the edges and an edge, Sec. III-A); ``plane_fraction`` is the fraction of valid
-    diagonal samples on it.
+    span, ``outer_top``/``outer_bottom`` the rows either spans (a faint edge's line may
+    cover only part of the door); ``plane`` has its normal towards the camera (cross
+    product of the line joining the edges and an edge, Sec. III-A); ``plane_fraction`` is
+    the fraction of valid diagonal samples on it.
     """
 
     left: int
@@ -60,14 +61,22 @@ class DoorCandidate:
     top: float
     bottom: float
     score: float
+    outer_top: float = math.nan
+    outer_bottom: float = math.nan
 
-    def image_corners(self, lines: VerticalLines) -> np.ndarray:
-        """(4, 2) pixels: bottom-left, bottom-right, top-right, top-left."""
-        xs = lines.x_at(np.array([[self.bottom, self.top]] * len(lines)))
+    @property
+    def partly_seen(self) -> bool:
+        """One edge's line spans rows the other's does not."""
+        return bool(self.outer_top < self.top or self.outer_bottom > self.bottom)
+
+    def image_corners(self, lines: VerticalLines, outer: bool = False) -> np.ndarray:
+        """(4, 2) pixels: bottom-left, bottom-right, top-right, top-left, on the rows both edges
+        span (``outer``: either spans, the shorter line extended)."""
+        top, bottom = (self.outer_top, self.outer_bottom) if outer else (self.top, self.bottom)
+        xs = lines.x_at(np.array([[bottom, top]] * len(lines)))
         xl_bottom, xl_top = xs[self.left]
         xr_bottom, xr_top = xs[self.right]
-        return np.array([[xl_bottom, self.bottom], [xr_bottom, self.bottom],
-                         [xr_top, self.top], [xl_top, self.top]])
+        return np.array([[xl_bottom, bottom], [xr_bottom, bottom], [xr_top, top], [xl_top, top]])
 
 
 def find_doors(lines: VerticalLines, depth: np.ndarray, intrinsics: CameraIntrinsics,
@@ -161,7 +170,8 @@ def _sized_candidate(lines: VerticalLines, left: int, right: int, depth: np.ndar
     s = lines.segments
     top, bottom = max(s[left, 1], s[right, 1]), min(s[left, 3], s[right, 3])
     candidate = DoorCandidate(left, right, left_edge, right_edge, 0.0, plane.facing(np.zeros(3)),
-                              0.0, float(top), float(bottom), 0.0)
+                              0.0, float(top), float(bottom), 0.0, float(min(s[left, 1], s[right, 1])),
+                              float(max(s[left, 3], s[right, 3])))
     width = edge_width(corners_3d(candidate, lines, candidate.plane, intrinsics))
     tolerance = options.door_width_tolerance
     if not options.door_width_min - tolerance <= width <= options.door_width_max + tolerance:
@@ -245,9 +255,7 @@ def _check_plane(candidate: DoorCandidate, lines: VerticalLines, depth: np.ndarr
         return None
     edges = 0.5 * (candidate.left_edge.inlier_fraction + candidate.right_edge.inlier_fraction)
     height = (candidate.bottom - candidate.top) / depth.shape[0]
-    return DoorCandidate(candidate.left, candidate.right, candidate.left_edge, candidate.right_edge,
-                         candidate.width, candidate.plane, fraction, candidate.top, candidate.bottom,
-                         fraction + edges + height)
+    return replace(candidate, plane_fraction=fraction, score=fraction + edges + height)
 
 
 def door_surface_points(candidate: DoorCandidate, lines: VerticalLines, depth: np.ndarray,

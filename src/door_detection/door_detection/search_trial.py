@@ -75,7 +75,7 @@ def run_search(world: object, neck: Neck, mode: DetectionMode = DetectionMode.AU
     while (view := search.view) is not None:
         _look(world, neck, view, start_base, timing)
         views += 1
-        scribble = _scribble(world, rng) if mode is DetectionMode.OPERATOR else None
+        scribble = operator_scribble(world, rng) if mode is DetectionMode.OPERATOR else None
         while True:
             frame = world.render()
             result = _detect(frame, mode, scribble, opts, world)
@@ -118,7 +118,7 @@ def _look(world: object, neck: Neck, view: View, start_base: np.ndarray, timing:
         waited += period
 
 
-def _scribble(world: object, rng: np.random.Generator) -> np.ndarray | None:
+def operator_scribble(world: object, rng: np.random.Generator) -> np.ndarray | None:
     """The operator's scribble on the lever when all of it projects into the image."""
     pose = world.camera.pose()
     points = (lever_corners(world) - pose[:3, 3]) @ pose[:3, :3]

@@ -13,10 +13,11 @@ soon as the evidence suffices:
   of mutually-agreeing-with-its-pivot estimates (the newest on ties) is the candidate;
 * it is **confirmed** when (1) it has at least ``vote_min_agreeing`` estimates, (2) they are
   more than half of the window's estimates, and (3) its fused handle is precise enough: the
-  standard error of the mean, ‖s‖/√n with s the per-axis sample standard deviations, at most
-  ``vote_handle_standard_error``, and the normals' RMS angle to their mean, over √(n − 1),
-  at most ``vote_normal_standard_error_deg``. Noise-free frames agree exactly and confirm at
-  n = 2; stereo noise at 4 m (σ ≈ 8 cm per pixel) needs a few more frames;
+  95 % confidence half-width of the mean, t₀.₉₇₅(n − 1)·‖s‖/√n with s the per-axis sample
+  standard deviations and t Student's quantile, at most ``vote_handle_confidence``, and
+  likewise for the normals (their RMS angle to the mean, over √(n − 1)) at most
+  ``vote_normal_confidence_deg``. Noise-free frames agree exactly and confirm at n = 2;
+  stereo noise at 4 m (σ ≈ 8 cm per pixel) needs several more;
 * the consensus is the mean of the group (outliers are already out of it: agreement is
   within 3 cm): handle, normal and up renormalised, corners and width (NaN-aware);
   confidence = |group| / N.
@@ -34,6 +35,7 @@ from collections import deque
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.special import stdtrit
 
 from door_detection.estimate import DetectionOutcome, DetectionResult, DoorEstimate
 from door_detection.options import DetectionOptions
@@ -42,14 +44,14 @@ from door_detection.options import DetectionOptions
 @dataclass(frozen=True)
 class VoteResult:
     """DETECTED with the consensus ``estimate``, VOTING (not confirmed yet) or NO_CONSENSUS (a
-    full window without a confirmed door); ``agreeing`` of ``window`` frames; the candidate's
-    handle ``standard_error`` (m; 0 for one estimate, inf for none)."""
+    full window without a confirmed door); ``agreeing`` of ``window`` frames; the 95 %
+    ``confidence`` half-width of the candidate's handle (m; 0 for one estimate, inf for none)."""
 
     outcome: DetectionOutcome
     estimate: DoorEstimate | None
     agreeing: int
     window: int
-    standard_error: float = math.inf
+    confidence: float = math.inf
 
     @property
     def ok(self) -> bool:
@@ -93,8 +95,8 @@ class Voter:
         error, spread = precision(best)
         options = self._options
         if (len(best) >= options.vote_min_agreeing and 2 * len(best) > len(estimates)
-                and error <= options.vote_handle_standard_error
-                and spread <= options.vote_normal_standard_error_deg):
+                and error <= options.vote_handle_confidence
+                and spread <= options.vote_normal_confidence_deg):
             return VoteResult(DetectionOutcome.DETECTED, self._consensus(best), len(best), len(self._window), error)
         outcome = DetectionOutcome.VOTING if len(self._window) < self.size else DetectionOutcome.NO_CONSENSUS
         return VoteResult(outcome, None, len(best), len(self._window), error)
@@ -124,20 +126,21 @@ class Voter:
 
 
 def precision(group: list[DoorEstimate]) -> tuple[float, float]:
-    """Standard errors of a group's mean handle (m) and mean normal (deg).
+    """95 % confidence half-widths of a group's mean handle (m) and mean normal (deg).
 
-    Handle: ‖s‖/√n, s the per-axis sample standard deviations (n − 1). Normal: the RMS angle
-    of the normals to their mean direction, over √(n − 1) (the same estimator on the sphere).
-    A lone estimate has no spread to measure (0, 0: whether one frame may confirm is
-    ``vote_min_agreeing``'s to say); no estimate, (inf, inf).
+    Handle: t·‖s‖/√n, s the per-axis sample standard deviations (n − 1). Normal: t × the RMS
+    angle of the normals to their mean direction, over √(n − 1) (the same estimator on the
+    sphere). t = t₀.₉₇₅(n − 1), Student's quantile. A lone estimate has no spread to measure
+    (0, 0: whether one frame may confirm is ``vote_min_agreeing``'s to say); none, (inf, inf).
     """
     n = len(group)
     if n < 2:
         return (0.0, 0.0) if n == 1 else (math.inf, math.inf)
     handles = np.stack([e.handle_position for e in group])
-    handle_error = float(np.linalg.norm(handles.std(axis=0, ddof=1)) / math.sqrt(n))
+    t = float(stdtrit(n - 1, 0.975))
+    handle_error = t * float(np.linalg.norm(handles.std(axis=0, ddof=1)) / math.sqrt(n))
     normals = np.stack([e.normal for e in group])
     mean = normals.mean(axis=0)
     mean /= np.linalg.norm(mean)
     angles = np.degrees(np.arccos(np.clip(normals @ mean, -1.0, 1.0)))
-    return handle_error, float(math.sqrt(float(np.mean(angles ** 2)) / (n - 1)))
+    return handle_error, t * float(math.sqrt(float(np.mean(angles ** 2)) / (n - 1)))
