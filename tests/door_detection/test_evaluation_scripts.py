@@ -80,9 +80,14 @@ def test_a_search_without_a_door_is_judged_a_failure() -> None:
     from door_detection.search_trial import SearchOutcome
     from door_detection.table_two import judge
 
+    from door_detection.table_two import TrialResult, failed_starts
+    from door_detection.trial_scenes import TrialScene
+
     result = judge(SearchOutcome(None, 12, 6, 9.0, (0.02,) * 12), np.zeros(3), np.array([-1.0, 0, 0]), 0.9)
     assert not result.success and result.outcome == "no door confirmed" and math.isnan(result.handle_error)
     assert (result.frames, result.views) == (12, 6)
+    listed = failed_starts([TrialResult(TrialScene(2.0, 0.4, seed=7), result, result)], "automatic")
+    assert "no door confirmed" in listed and "TrialScene(distance=2.0, yaw=0.4" in listed and "seed=7" in listed
 
 
 def test_table_two_in_two_processes_gives_the_same_trials_in_the_same_order() -> None:

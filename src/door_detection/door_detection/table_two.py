@@ -144,6 +144,14 @@ def search_cost(results: Sequence[TrialResult], mode: str) -> str:
     return "\n".join(parts)
 
 
+def failed_starts(results: Sequence[TrialResult], mode: str, most: int = 10) -> str:
+    """The first ``most`` failed starts of a mode, each a scene to re-run (``run_trial``)."""
+    failed = [r for r in results if not getattr(r, mode).success]
+    lines = [f"  failed: {getattr(r, mode).outcome}, handle {getattr(r, mode).handle_error * 100:.1f} cm, "
+             f"{getattr(r, mode).views} views: {r.scenario!r}" for r in failed[:most]]
+    return "\n".join(lines + ([f"  ... and {len(failed) - most} more"] if len(failed) > most else []))
+
+
 def report(results: Sequence[TrialResult], grid: TableTwoGrid, settings: SearchSettings | None = None) -> str:
     """The Table II report: per-cell tables, the paper's form, costs, the paper's table."""
     rate = (settings or SearchSettings()).camera_rate
@@ -157,6 +165,7 @@ def report(results: Sequence[TrialResult], grid: TableTwoGrid, settings: SearchS
                   success_table(results, mode, grid), summary(results, mode), search_cost(results, mode),
                   f"  worst cell {worst[0]:.0%} at {worst[1]:.1f} m, {worst[2]:+.1f} rad "
                   f"(target ≥ {CELL_TARGET:.0%} in every cell: {'met' if worst[0] >= CELL_TARGET else 'NOT met'})"]
+        parts += [failed_starts(results, mode)] if any(not getattr(r, mode).success for r in results) else []
     parts += ["", "TABLE II (ours, same layout): a result is success when every cell of the row reaches 98 %",
               paper_form(results, grid), "", paper_table()]
     return "\n".join(parts)
