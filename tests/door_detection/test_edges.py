@@ -53,6 +53,7 @@ def test_without_contrast_the_hough_line_is_kept() -> None:
 def test_contrast_limited_equalisation_keeps_a_small_step_next_to_a_dominant_grey() -> None:
     """A white scene (one grey, 179, almost everywhere) with a lit jamb face (190): plain
     equalisation sends both to the top (254, 255); the contrast-limited one keeps a step."""
+    from door_detection.options import DetectionOptions
     from door_detection.preprocessing import equalise_luma
 
     luma = np.full((200, 300), 179, np.uint8)
@@ -60,6 +61,6 @@ def test_contrast_limited_equalisation_keeps_a_small_step_next_to_a_dominant_gre
     luma[:, 200] = 153
     plain = equalise_luma(luma, 0.0)
     assert int(plain[0, 150]) - int(plain[0, 0]) <= 1
-    limited = equalise_luma(luma, 2.0)
+    limited = equalise_luma(luma, DetectionOptions().histogram_clip_limit)
     assert int(limited[0, 150]) - int(limited[0, 0]) >= 10
     assert int(limited[0, 0]) - int(limited[0, 200]) >= 20
