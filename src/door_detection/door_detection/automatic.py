@@ -10,7 +10,8 @@ Pipeline, one frame:
    diagonals; normal = (line joining the edges) × (edge) (:mod:`~door_detection.door_pairs`);
 4. handle by colour statistics on the handle side (:mod:`~door_detection.handle`), on
    the best candidates in turn until one has a handle (on the rows both edges span, then,
-   when one edge's line is shorter — a faint edge — on the rows either spans);
+   when one edge's line is shorter — a faint edge — on the rows either spans) that does not
+   touch the image border (a lever cut by it would be measured short: 2.8 cm off);
 5. the plane refined by robust least squares in inverse-depth space over ~3000 points of
    the door's surface (beyond the paper: the cross-product normal only seeds it; under
    stereo noise the fit is ~10× more precise, see :func:`~door_detection.plane.refine_plane`);
@@ -38,7 +39,7 @@ from door_detection.errors import InputError
 from door_detection.estimate import (DetectionMode, DetectionOutcome, DetectionResult, DoorEstimate,
                                      Side)
 from door_detection.grasp import locate_grasp
-from door_detection.handle import HandleBlob, find_handle
+from door_detection.handle import HandleBlob, find_handle, touches_border
 from door_detection.lines import VerticalLines, detect_vertical_lines
 from door_detection.options import DetectionOptions
 from door_detection.plane import refine_plane
@@ -167,14 +168,17 @@ def _find_door_and_handle(frame: Frame, options: DetectionOptions, hinge_side: S
     if not doors:
         raise StageFailure(DetectionOutcome.NO_DOOR_PLANE,
                            f"{sized} door-width pair(s) but none holds a plane between its edges", sized)
+    cut = False
     for candidate in doors[: options.max_candidates]:
         ratio = float(candidate.left_edge.point[2] / candidate.right_edge.point[2])
         for outer in (False, True) if candidate.partly_seen else (False,):
             blob = find_handle(frame.rgb, candidate.image_corners(lines, outer), options, hinge_side, ratio)
-            if blob is not None:
+            if blob is not None and touches_border(blob, frame.rgb.shape):
+                cut = True                   # a lever cut by the border would be measured short
+            elif blob is not None:
                 clock.mark("handle")
                 return _Found(candidate, blob, lines, len(doors))
     clock.mark("handle")
     raise StageFailure(DetectionOutcome.NO_HANDLE,
-                       f"{len(doors)} door(s) found but no handle blob on the "
-                       f"{'handle' if hinge_side else 'left or right'} side", len(doors))
+                       f"{len(doors)} door(s) found but " + ("the handle is cut by the image border" if cut else
+                       f"no handle blob on the {'handle' if hinge_side else 'left or right'} side"), len(doors))
