@@ -159,3 +159,21 @@ def test_a_faint_edge_seen_in_part_still_bounds_the_handle_search() -> None:
     assert result.ok, result.reason
     in_odom = result.estimate.transformed(frame.camera_pose)
     assert handle_error(in_odom.handle_position, grasp[:3, 3]) < 0.02
+
+
+def test_a_jamb_the_colour_of_the_leaf_is_cut_off_by_depth() -> None:
+    """Table II start 31: a white leaf in a white frame 1 m away; one leaf edge does not show,
+    so the pair is a leaf edge and the far side of a jamb (6.8 cm too wide). The jamb stands
+    1 cm proud of the leaf: the edge moves inward past it."""
+    from door_detection.trial_scenes import Appearance, TrialScene, world_config
+    from door_sim_bridge.world import DoorWorld
+
+    white = (1.0, 1.0, 1.0)
+    look = Appearance(white, white, (0.85, 0.7, 0.15), (0.45, 0.58, 0.72), (0.6, 0.5, 0.38), (-0.4025, -0.4411, 0.8021))
+    scene = TrialScene(1.0, 0.0, 0.1036, 0.8245, 1.0834, "push", "left", 0.0041, look, 31)
+    with DoorWorld(world_config(scene)) as world:
+        frame, grasp = world.render(), world.handle_grasp_pose()
+    result = detect_automatic(frame.rgb, frame.depth, frame.intrinsics)
+    assert result.ok, result.reason
+    assert abs(result.estimate.width - scene.width) < 0.01, result.estimate.width
+    assert handle_error(result.estimate.transformed(frame.camera_pose).handle_position, grasp[:3, 3]) < 0.02

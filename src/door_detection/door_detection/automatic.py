@@ -40,6 +40,7 @@ from door_detection.estimate import (DetectionMode, DetectionOutcome, DetectionR
                                      Side)
 from door_detection.grasp import locate_grasp
 from door_detection.handle import HandleBlob, find_handle, touches_border
+from door_detection.jambs import trim_jambs
 from door_detection.lines import VerticalLines, detect_vertical_lines
 from door_detection.options import DetectionOptions
 from door_detection.plane import refine_plane
@@ -129,6 +130,7 @@ def _detect(frame: Frame, options: DetectionOptions, hinge_side: Side | None,
     plane, fraction = refine_plane(surface, candidate.plane, options.plane_inlier_distance) \
         if len(surface) >= options.min_region_points else (candidate.plane, candidate.plane_fraction)
     plane = plane.facing(np.zeros(3))
+    lines = trim_jambs(lines, candidate, plane, frame.depth, frame.intrinsics, options.frame_width_max)
     up = _door_up(candidate)
     hinge = found.blob.side.opposite
     handle = locate_grasp(found.blob.cols, found.blob.rows, frame.depth, frame.intrinsics, plane, up,
