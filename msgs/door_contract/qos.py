@@ -45,5 +45,7 @@ EVENTS = QosSpec(depth=10)
 SENSOR = QosSpec(depth=5)
 #: Latest-value topics a late joiner must still receive (state, approval request).
 LATCHED = QosSpec(depth=1, durability=Durability.TRANSIENT_LOCAL)
+#: /tf: as tf2_ros broadcasts it, reliable with a deep queue (many frames per message).
+TF_STREAM = QosSpec(depth=100)
 #: /clock: many small messages, only the newest matters.
 CLOCK = QosSpec(depth=1, reliability=Reliability.BEST_EFFORT)

@@ -12,6 +12,9 @@ BRIDGE_PARAMETERS = (
     ParameterSpec("real_time", False, "pace the simulation to the wall clock (false: as fast as possible)"),
     ParameterSpec("state_rate", 50.0, "/joint_states, /odom and /sim/door_joint_states rate (sim time)",
                   unit="Hz", minimum=1.0, maximum=500.0),
+    ParameterSpec("tf_rate", 20.0, "/tf rate (sim time); 0: no /tf", unit="Hz", minimum=0.0, maximum=500.0),
+    ParameterSpec("mesh_uris", "package", "how /robot_description names meshes: package:// (Foxglove via "
+                  "the bridge, RViz via the ament index) or file:// (this machine)", choices=("package", "file")),
     ParameterSpec("clock_rate", 100.0, "/clock rate (sim time)", unit="Hz", minimum=1.0, maximum=1000.0),
     ParameterSpec("camera_rate", 2.0, "head camera frame rate (sim time); 0 disables the camera", unit="Hz",
                   minimum=0.0, maximum=30.0),

@@ -33,10 +33,12 @@ from door_contract.node_support import (Heartbeat, create_contract_publisher, cr
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, encode
 from door_contract.stamps import stamp_ns, to_time_msg
 from door_contract.topics import Services, Topics
+from door_robot.meshes import MeshUris
 from door_robot.profile import Side
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS, NODE_NAME
+from door_sim_bridge.robot_state_publication import RobotStatePublication
 from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, DoorWorld, HingeSide, StanceConfig,
                                    WindConfig, WorldConfig)
 from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT
@@ -82,12 +84,13 @@ class SimBridgeNode(Node):
         except SimulationError as error:
             raise ParameterRangeError(f"simulation: {error}") from None
         self.schedules = {"clock": Schedule(p["clock_rate"]), "state": Schedule(p["state_rate"]),
-                          "camera": Schedule(p["camera_rate"])}
+                          "camera": Schedule(p["camera_rate"]), "tf": Schedule(p["tf_rate"])}
         self.execution: tuple[TrajectoryExecution | FootstepExecution, ExecutionKind, int] | None = None
         self.previous_base: tuple[float, np.ndarray] | None = None
         self.wall_start = time.monotonic()
         self.heartbeat = Heartbeat(self)
         self._make_interfaces()
+        self.robot_state = RobotStatePublication(self, self.world, MeshUris(p["mesh_uris"]), self.world.time)
         self.create_timer(0.0 if not p["real_time"] else 1.0 / p["physics_rate"] * STEPS_PER_TICK, self._tick)
         self.get_logger().info(f"ready: {p['robot_profile']}, {p['door_opening']} door hinged {p['hinge_side']}, "
                                f"{p['physics_rate']:.0f} Hz physics, {'real time' if p['real_time'] else 'as fast as possible'}")
@@ -164,6 +167,8 @@ class SimBridgeNode(Node):
             self.publishers_by_name["CLOCK"].publish(Clock(clock=to_time_msg(now)))
         if self.schedules["state"].due(now):
             self._publish_state(now)
+        if self.parameters["tf_rate"] > 0 and self.schedules["tf"].due(now):
+            self.robot_state.publish(now)
         if self.parameters["camera_rate"] > 0 and self.schedules["camera"].due(now):
             self._publish_camera()
 

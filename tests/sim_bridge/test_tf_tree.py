@@ -1,0 +1,99 @@
+"""The TF tree (ROS-free): composing /tf_static and /tf from odom down to any link gives the
+sim's pose of that link; fixed joints are static, moving joints are not; bad URDFs are refused."""
+
+import numpy as np
+import pytest
+
+from door_contract.frames import Frame
+from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.robot_description import loaded_urdf
+from door_sim_bridge.tf_tree import RobotTfTree, compose, root_link, urdf_joints, world_tf_tree
+from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
+from door_contract.geometry import planar_pose
+
+
+@pytest.fixture(scope="module")
+def world():
+    with DoorWorld(WorldConfig(stance=StanceConfig(distance=2.0, lateral_offset=0.3, yaw=0.4))) as world:
+        yield world
+
+
+def _all_transforms(tree: RobotTfTree):
+    return [*tree.static_transforms(), *tree.moving_transforms()]
+
+
+def test_every_link_composes_to_the_sims_pose(world):
+    tree = world_tf_tree(world, loaded_urdf(world)[0])
+    world.set_joint_targets({"arm_right_4_joint": -1.2, "torso_1_joint": 0.3, "head_2_joint": 0.2})
+    world.step(240)
+    world.set_base_pose(planar_pose(-1.5, 0.2, -0.3, world.profile.base_height))
+    transforms = _all_transforms(tree)
+    links = {j.child for j in tree.joints} | {tree.root}
+    assert len(links) == 60 and not tree.skipped
+    for link in links:
+        np.testing.assert_allclose(compose(transforms, Frame.ODOM.value, link), world.link_pose(link),
+                                   atol=1e-6, err_msg=link)  # PyBullet quaternions are unit to ~1e-7
+
+
+def test_camera_optical_frame_is_the_images_frame(world):
+    tree = world_tf_tree(world, loaded_urdf(world)[0])
+    world.set_joint_targets({"head_1_joint": 0.4})
+    world.step(240)
+    optical = compose(_all_transforms(tree), Frame.ODOM.value, Frame.HEAD_CAMERA_OPTICAL.value)
+    np.testing.assert_allclose(optical, world.camera.pose(), atol=1e-6)
+
+
+def test_fixed_joints_are_static_and_moving_ones_are_not(world):
+    tree = world_tf_tree(world, loaded_urdf(world)[0])
+    static = {t.child for t in tree.static_transforms()}
+    moving = {t.child for t in tree.moving_transforms()}
+    assert "left_sole_link" in static and "rgbd_rgb_optical_frame" in static
+    assert {"arm_right_4_link", "head_2_link", Frame.BASE_LINK.value} <= moving
+    assert not static & moving
+    assert len(moving) == 1 + sum(j.moving for j in tree.joints)  # odom → base_link + each moving joint
+
+
+class _TwoLinkWorld:
+    """A world whose simulator knows only some links (as if it had merged the others away)."""
+
+    def __init__(self, known):
+        self.known = known
+
+    def link_pose(self, link):
+        if link not in self.known:
+            raise SimulationError(f"no link {link!r}")
+        return planar_pose(len(link), 0.0, 0.0)
+
+    def base_pose(self):
+        return np.eye(4)
+
+
+URDF = """<robot name="r"><link name="base_link"/><link name="a"/><link name="b"/>
+  <joint name="j1" type="revolute"><parent link="base_link"/><child link="a"/></joint>
+  <joint name="j2" type="fixed"><parent link="a"/><child link="b"/></joint>
+  <transmission name="t"><joint name="j1"/></transmission></robot>"""
+
+
+def test_joints_of_links_the_sim_lacks_are_skipped_and_named():
+    tree = RobotTfTree(_TwoLinkWorld({"base_link", "a"}), URDF, "a", np.eye(4))
+    assert tree.skipped == ("j2",)
+    assert [t.child for t in tree.moving_transforms()] == [Frame.BASE_LINK.value, "a"]
+
+
+def test_a_root_not_named_base_link_gets_an_alias():
+    text = URDF.replace("base_link", "pelvis")
+    tree = RobotTfTree(_TwoLinkWorld({"pelvis", "a", "b"}), text, "a", np.eye(4))
+    alias = [t for t in tree.static_transforms() if t.child == "pelvis"]
+    assert alias and alias[0].parent == Frame.BASE_LINK.value
+    np.testing.assert_allclose(alias[0].matrix, np.eye(4))
+
+
+@pytest.mark.parametrize("text, match", [
+    ("not xml <", "not XML"),
+    ("<robot name='r'><link name='a'/></robot>", "no <robot> with joints"),
+    ("<robot><joint name='j' type='fixed'><parent link='a'/><child link='b'/></joint>"
+     "<joint name='k' type='fixed'><parent link='c'/><child link='d'/></joint></robot>", "one root link"),
+])
+def test_bad_descriptions_are_refused(text, match):
+    with pytest.raises(SimulationError, match=match):
+        root_link(urdf_joints(text))
