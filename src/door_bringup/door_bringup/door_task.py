@@ -57,6 +57,7 @@ class TaskOptions:
     timeout_s: float = 900.0
     record: bool = True
     storage: str = "sqlite3"
+    compression: str = "none"  # "zstd": compressed mcap chunks (with storage mcap)
     camera_rate: float = 2.0  # Hz of sim time; 10 Hz cuts detection to ~0.8 s but halves the sim's speed
 
     def node_overrides(self) -> dict[str, list[str]]:
@@ -122,7 +123,8 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
     started = time.monotonic()
     try:
         if options.record:
-            supervisor.start(RECORDER, args=(str(run_dir / "bag"), "--storage", options.storage))
+            supervisor.start(RECORDER, args=(str(run_dir / "bag"), "--storage", options.storage,
+                                             "--compression", options.compression))
         for launch in GRAPH:
             supervisor.start(launch, overrides[launch.node_name])
         print(f"graph started ({len(GRAPH)} nodes); logs in {run_dir / 'logs'}", flush=True)
@@ -181,14 +183,18 @@ def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
     parser.add_argument("--distance", type=float, default=3.0, help="start distance to the door (m)")
     parser.add_argument("--timeout", type=float, default=900.0, help="give up after this many seconds")
     parser.add_argument("--storage", choices=("sqlite3", "mcap"), default="sqlite3")
+    parser.add_argument("--compression", choices=("none", "zstd"), default="none",
+                        help="zstd: compressed mcap chunks (needs --storage mcap)")
     parser.add_argument("--camera-rate", type=float, default=2.0,
                         help="head camera frames per second of sim time (rendering costs ~0.1 s per frame)")
     parser.add_argument("--no-bag", action="store_true")
     parser.add_argument("--run-dir", type=Path, default=None)
     args, _ = parser.parse_known_args(argv)
+    if args.compression != "none" and args.storage != "mcap":
+        parser.error("--compression zstd needs --storage mcap")
     options = TaskOptions(args.opening, args.hinge, args.autonomy, args.operator, args.seed, args.backend,
                           args.distance, timeout_s=args.timeout, record=not args.no_bag, storage=args.storage,
-                          camera_rate=args.camera_rate)
+                          camera_rate=args.camera_rate, compression=args.compression)
     return options, args.run_dir
 
 

@@ -3,7 +3,9 @@
     bag_play BAG [--rate 2.0] [--clock] [--topics /a /b] [--wait-for-subscribers 5]
 
 Messages are published as the serialized CDR bytes stored in the bag (no decode/encode),
-with the contract's QoS for the graph's own topics and reliable depth-100 otherwise.
+with the QoS the bag recorded for each topic (transient-local topics stay transient local,
+:mod:`door_bringup.bags.qos`); topics recorded without QoS get the contract's QoS for the
+graph's own topics and reliable depth-100 otherwise.
 ``--clock`` publishes /clock with the bag's time before each message, so nodes running
 with ``use_sim_time`` replay exactly.
 """
@@ -23,7 +25,8 @@ from rclpy.node import Node
 from rclpy.qos import QoSProfile
 from rosgraph_msgs.msg import Clock
 
-from door_bringup.bags.storage import BagMessage, read_messages
+from door_bringup.bags.qos import playback_profile
+from door_bringup.bags.storage import BagMessage, read_messages, recorded_qos
 from door_contract.stamps import to_time_msg
 from door_contract.topics import Topics, TopicSpec, interface_class
 
@@ -59,7 +62,8 @@ def qos_for(topic: str) -> QoSProfile:
 
 
 class BagPlayer(Node):
-    def __init__(self, messages: list[BagMessage], options: PlaybackOptions) -> None:
+    def __init__(self, messages: list[BagMessage], options: PlaybackOptions,
+                 offers: dict | None = None) -> None:
         super().__init__("bag_player")
         self.messages, self.options = messages, options
         self.published = 0
@@ -67,7 +71,7 @@ class BagPlayer(Node):
         for topic, type_name in sorted({(m.topic, m.type_name) for m in messages}):
             try:
                 self.publishers_by_topic[topic] = self.create_publisher(
-                    interface_class(type_name), topic, qos_for(topic))
+                    interface_class(type_name), topic, playback_profile((offers or {}).get(topic, []), qos_for(topic)))
             except (ImportError, AttributeError, ValueError):
                 self.get_logger().warning(f"skipping {topic}: message type {type_name} is not installed")
         self.clock_publisher = self.create_publisher(Clock, Topics.CLOCK.name, Topics.CLOCK.qos.to_profile()) \
@@ -112,7 +116,7 @@ def main(argv: list[str] | None = None) -> int:
                               args.wait_for_subscribers)
     messages = list(read_messages(args.bag, options.topics))
     rclpy.init(args=ros_args)
-    player = BagPlayer(messages, options)
+    player = BagPlayer(messages, options, recorded_qos(args.bag) if args.bag.is_dir() else {})
     try:
         count = player.play()
         player.get_logger().info(f"played {count} of {len(messages)} messages from {args.bag}")

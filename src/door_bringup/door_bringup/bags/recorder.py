@@ -1,9 +1,12 @@
 """``bag_record``: record topics into a rosbag2 bag (like ``ros2 bag record``).
 
-    bag_record OUTPUT [--storage sqlite3|mcap] [--topics /a /b]   (default: every topic)
+    bag_record OUTPUT [--storage sqlite3|mcap] [--compression none|zstd] [--topics /a /b]
+                                                                   (default: every topic)
 
 Subscribes with raw (serialized) callbacks, so messages are stored byte-identical; new
-topics are picked up while recording. Ctrl-C / SIGTERM closes the bag cleanly.
+topics are picked up while recording, each with the QoS its publishers offer (stored in the
+bag, so a player restores transient-local topics; :mod:`door_bringup.bags.qos`). Ctrl-C /
+SIGTERM closes the bag cleanly.
 """
 
 from __future__ import annotations
@@ -15,16 +18,18 @@ from pathlib import Path
 from rclpy.node import Node
 
 from door_bringup.bags.player import qos_for
-from door_bringup.bags.storage import BagWriter, StorageFormat
+from door_bringup.bags.qos import offered_qos, recording_profile
+from door_bringup.bags.storage import BagWriter, Compression, StorageFormat
 from door_contract.converters.diagnostics import Health
 from door_contract.node_support import Heartbeat, run_node
 from door_contract.topics import interface_class
 
 
 class BagRecorder(Node):
-    def __init__(self, output: Path, storage: StorageFormat, topics: tuple[str, ...] | None) -> None:
+    def __init__(self, output: Path, storage: StorageFormat, topics: tuple[str, ...] | None,
+                 compression: Compression = Compression.NONE) -> None:
         super().__init__("bag_recorder")
-        self.writer = BagWriter(output, storage)
+        self.writer = BagWriter(output, storage, compression)
         self.wanted = set(topics) if topics else None
         self.subscriptions_by_topic = {}
         self.count = 0
@@ -41,8 +46,10 @@ class BagRecorder(Node):
                 msg_type = interface_class(types[0])
             except (ImportError, AttributeError, ValueError):
                 continue
+            offers = [offered_qos(info.qos_profile) for info in self.get_publishers_info_by_topic(topic)]
+            self.writer.add_topic(topic, types[0], offers)
             self.subscriptions_by_topic[topic] = self.create_subscription(
-                msg_type, topic, self._writer_for(topic, types[0]), qos_for(topic), raw=True)
+                msg_type, topic, self._writer_for(topic, types[0]), recording_profile(offers, qos_for(topic)), raw=True)
 
     def _writer_for(self, topic: str, type_name: str):
         def write(data: bytes) -> None:
@@ -61,10 +68,15 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description="Record topics to a rosbag2 bag.")
     parser.add_argument("output", type=Path)
     parser.add_argument("--storage", choices=[s.value for s in StorageFormat], default="sqlite3")
+    parser.add_argument("--compression", choices=[c.value for c in Compression], default="none",
+                        help="zstd: compressed mcap chunks (mcap only)")
     parser.add_argument("--topics", nargs="+", default=None)
     args, ros_args = parser.parse_known_args(argv)
+    if args.compression != "none" and args.storage != "mcap":
+        parser.error("--compression zstd needs --storage mcap")
     return run_node(lambda: BagRecorder(args.output, StorageFormat(args.storage),
-                                        tuple(args.topics) if args.topics else None), ros_args)
+                                        tuple(args.topics) if args.topics else None,
+                                        Compression(args.compression)), ros_args)
 
 
 if __name__ == "__main__":
