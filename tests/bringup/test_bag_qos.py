@@ -14,9 +14,10 @@ from rclpy.serialization import deserialize_message, serialize_message
 from rosbags.interfaces import QosDurability, QosReliability
 from std_msgs.msg import String
 
-from door_bringup.bags.qos import offered_qos, playback_profile, recording_profile
+from door_bringup.bags.qos import offered_qos, playback_profile
 from door_bringup.bags.storage import BagError, BagWriter, Compression, StorageFormat, read_messages, recorded_qos
 from door_contract.node_support import create_contract_publisher
+from door_contract.qos import matching_subscription
 from door_contract.topics import Topics
 from ros_helpers import executor_for, spin_until
 
@@ -71,9 +72,11 @@ def test_player_and_recorder_profiles_follow_the_offers():
     assert (mixed.durability, mixed.reliability) == (DurabilityPolicy.VOLATILE, ReliabilityPolicy.RELIABLE)
     assert playback_profile([BEST_EFFORT], fallback).reliability is ReliabilityPolicy.BEST_EFFORT
     assert playback_profile([], fallback) is fallback
-    record = recording_profile([LATCHED, BEST_EFFORT], fallback)
+    latched, best_effort = Topics.TASK_STATE.qos.to_profile(), Topics.CLOCK.qos.to_profile()
+    record = matching_subscription([latched, best_effort], fallback)
     assert (record.reliability, record.durability) == (ReliabilityPolicy.BEST_EFFORT, DurabilityPolicy.VOLATILE)
-    assert recording_profile([LATCHED], fallback).durability is DurabilityPolicy.TRANSIENT_LOCAL
+    assert matching_subscription([latched], fallback).durability is DurabilityPolicy.TRANSIENT_LOCAL
+    assert matching_subscription([], fallback) is fallback
 
 
 @pytest.mark.ros

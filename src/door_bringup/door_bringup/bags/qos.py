@@ -3,9 +3,8 @@
 As rosbag2 does (Jazzy's ``ros2 bag record`` / ``play``):
 
 * the recorder stores every publisher's offered profile with its topic, and subscribes so as
-  to match all of them: best effort if any publisher is best effort, transient local only if
-  every publisher is (then a latched message published before the recorder joined is still
-  recorded);
+  to match all of them (:func:`door_contract.qos.matching_subscription`: a latched message
+  published before the recorder joined is still recorded);
 * the player publishes a topic with the recorded reliability and durability when all the
   recorded offers agree (a latched ``/door_task/state`` stays latched: a late subscriber still
   gets the last state), else reliable and volatile. Depth: the recorded depth for transient
@@ -37,17 +36,6 @@ def offered_qos(profile: QoSProfile) -> Qos:
                QosDurability(int(profile.durability)), _time(profile.deadline), _time(profile.lifespan),
                QosLiveliness(int(profile.liveliness)), _time(profile.liveliness_lease_duration),
                bool(profile.avoid_ros_namespace_conventions))
-
-
-def recording_profile(offers: Sequence[Qos], fallback: QoSProfile) -> QoSProfile:
-    """The subscription that receives from every offering publisher (``fallback`` if none)."""
-    if not offers:
-        return fallback
-    best_effort = any(o.reliability is QosReliability.BEST_EFFORT for o in offers)
-    latched = all(o.durability is QosDurability.TRANSIENT_LOCAL for o in offers)
-    return QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=max(VOLATILE_DEPTH, fallback.depth),
-                      reliability=ReliabilityPolicy.BEST_EFFORT if best_effort else ReliabilityPolicy.RELIABLE,
-                      durability=DurabilityPolicy.TRANSIENT_LOCAL if latched else DurabilityPolicy.VOLATILE)
 
 
 def playback_profile(offers: Sequence[Qos], fallback: QoSProfile) -> QoSProfile:

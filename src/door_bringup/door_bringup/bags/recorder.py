@@ -4,8 +4,9 @@
                                                                    (default: every topic)
 
 Subscribes with raw (serialized) callbacks, so messages are stored byte-identical; new
-topics are picked up while recording, each with the QoS its publishers offer (stored in the
-bag, so a player restores transient-local topics; :mod:`door_bringup.bags.qos`). Ctrl-C /
+topics are picked up while recording as soon as a publisher offers them (as ``ros2 bag record``
+does), each with the QoS its publishers offer (stored in the bag, so a player restores
+transient-local topics; :mod:`door_bringup.bags.qos`). Ctrl-C /
 SIGTERM closes the bag cleanly.
 """
 
@@ -18,10 +19,11 @@ from pathlib import Path
 from rclpy.node import Node
 
 from door_bringup.bags.player import qos_for
-from door_bringup.bags.qos import offered_qos, recording_profile
+from door_bringup.bags.qos import offered_qos
 from door_bringup.bags.storage import BagWriter, Compression, StorageFormat
 from door_contract.converters.diagnostics import Health
 from door_contract.node_support import Heartbeat, run_node
+from door_contract.qos import matching_subscription
 from door_contract.topics import interface_class
 
 
@@ -46,10 +48,13 @@ class BagRecorder(Node):
                 msg_type = interface_class(types[0])
             except (ImportError, AttributeError, ValueError):
                 continue
-            offers = [offered_qos(info.qos_profile) for info in self.get_publishers_info_by_topic(topic)]
-            self.writer.add_topic(topic, types[0], offers)
+            offered = [info.qos_profile for info in self.get_publishers_info_by_topic(topic)]
+            if not offered:
+                continue  # known only from a subscriber so far: recorded once a publisher offers its QoS
+            self.writer.add_topic(topic, types[0], [offered_qos(profile) for profile in offered])
             self.subscriptions_by_topic[topic] = self.create_subscription(
-                msg_type, topic, self._writer_for(topic, types[0]), recording_profile(offers, qos_for(topic)), raw=True)
+                msg_type, topic, self._writer_for(topic, types[0]), matching_subscription(offered, qos_for(topic)),
+                raw=True)
 
     def _writer_for(self, topic: str, type_name: str):
         def write(data: bytes) -> None:
