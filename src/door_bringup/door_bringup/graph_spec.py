@@ -1,4 +1,4 @@
-"""The node graph of DESIGN.md: which executable of which package runs which node."""
+"""The node graph of DESIGN.md (and its proposal markers): which executable of which package runs which node."""
 
 from __future__ import annotations
 
@@ -18,4 +18,8 @@ GRAPH = (
     NodeLaunch("footstep_planner", "footstep_planner", "footstep_planner"),
     NodeLaunch("door_trajopt", "trajectory_optimizer", "trajectory_optimizer"),
     NodeLaunch("door_fsm", "fsm_supervisor", "fsm_supervisor"),
+    NodeLaunch("door_viz", "proposal_markers", "proposal_markers"),
 )
+
+#: The live view (``door_task --foxglove``): not part of the task, so not in GRAPH.
+FOXGLOVE_BRIDGE = NodeLaunch("door_viz", "foxglove_bridge", "foxglove_bridge")
