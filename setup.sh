@@ -40,7 +40,7 @@ stamp=.venv/.requirements.sha256
 wanted=$(sha256sum requirements.txt | cut -d' ' -f1)
 if [ "$(cat "$stamp" 2>/dev/null)" != "$wanted" ]; then
   .venv/bin/python -m pip install -q --disable-pip-version-check -r requirements.txt 2>&1 | grep -v "^WARNING: Location" || true
-  .venv/bin/python -c "import rclpy, pinocchio, pybullet, open3d, cv2, osqp, rosbags" 
+  .venv/bin/python -c "import rclpy, pinocchio, pybullet, open3d, cv2, osqp, rosbags, foxglove"
   echo "$wanted" > "$stamp"
 else
   echo "up to date"
