@@ -70,11 +70,11 @@ class Topics:
     DEPTH_INFO = TopicSpec("/head_camera/depth/camera_info", "sensor_msgs/msg/CameraInfo", SENSOR,
                            "sim_bridge", "depth intrinsics", frame=Frame.HEAD_CAMERA_OPTICAL.value)
     FOOT_POSES = TopicSpec("/feet", "nav_msgs/msg/Path", SENSOR, "sim_bridge",
-                           "where the soles stand: poses[0] left, poses[1] right (tf2 is not on PyPI)",
+                           "where the soles stand: poses[0] left, poses[1] right (also on /tf)",
                            frame=Frame.ODOM.value, unit="m")
     CAMERA_POSE = TopicSpec("/head_camera/pose", "geometry_msgs/msg/PoseStamped", SENSOR, "sim_bridge",
-                            "head camera optical frame in odom, stamped like its images (tf2 is not "
-                            "on PyPI)", frame=Frame.ODOM.value, unit="m")
+                            "head camera optical frame in odom, stamped like its images (also on /tf)",
+                            frame=Frame.ODOM.value, unit="m")
     TF = TopicSpec("/tf", "tf2_msgs/msg/TFMessage", TF_STREAM, "sim_bridge",
                    "odom → base_link and every moving joint of the robot, stamped with sim time",
                    frame=Frame.ODOM.value, unit="m")

@@ -87,6 +87,7 @@ def test_progress_line_and_printer():
     assert progress_line(progress) == ("[progress]   41 s | sim 27.5 s | 3/4 OPEN_DOOR/TURN_HANDLE | "
                                        "base (-0.62, -0.15) m | door 0.12 rad")
     assert phase_of("PAUSED") == "PAUSED" and progress_line(TaskProgress()).endswith("waiting for the FSM")
+    assert progress_line(progress.update(door_angle=-0.001)).endswith("door 0.00 rad")
     written = []
     log = ProgressPrinter(written.append, is_terminal=False, log_period_s=10.0)
     for wall in (0.0, 5.0, 10.0):

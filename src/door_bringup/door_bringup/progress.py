@@ -34,15 +34,20 @@ def phase_of(state: str) -> str:
     return f"{PHASES.index(top) + 1}/{len(PHASES)} {state}" if top in PHASES else state
 
 
+def _rounded(value: float) -> float:
+    """``value`` to 2 decimals without a negative zero (-0.001 rad prints as 0.00)."""
+    return round(value, 2) + 0.0
+
+
 def progress_line(progress: TaskProgress) -> str:
     parts = [f"[progress] {progress.wall_s:4.0f} s"]
     if progress.sim_s is not None:
         parts.append(f"sim {progress.sim_s:.1f} s")
     parts.append(phase_of(progress.state) if progress.state else "waiting for the FSM")
     if progress.base_xy is not None:
-        parts.append(f"base ({progress.base_xy[0]:.2f}, {progress.base_xy[1]:.2f}) m")
+        parts.append(f"base ({_rounded(progress.base_xy[0]):.2f}, {_rounded(progress.base_xy[1]):.2f}) m")
     if progress.door_angle is not None:
-        parts.append(f"door {progress.door_angle:.2f} rad")
+        parts.append(f"door {_rounded(progress.door_angle):.2f} rad")
     return " | ".join(parts)
 
 

@@ -95,7 +95,7 @@ def _support_at_smallest_margin(axes, run: RunSeries) -> None:
     axes.fill(polygon[:, 0], polygon[:, 1], color="tab:green", alpha=0.2, label="support polygon (both soles)")
     axes.plot(run.com[:, 1], run.com[:, 2], "m:", linewidth=0.8, label="CoM track")
     axes.plot(*run.com[worst, 1:3], "mo", label=f"CoM at t = {run.com[worst, 0]:.1f} s")
-    axes.set_aspect("equal", adjustable="datalim")
+    axes.set_aspect("equal", adjustable="box")
     axes.set_xlim(polygon[:, 0].min() - 0.15, polygon[:, 0].max() + 0.15)
     axes.set_ylim(polygon[:, 1].min() - 0.15, polygon[:, 1].max() + 0.15)
     axes.set(xlabel="x (m)", ylabel="y (m)", title=f"Smallest margin: {run.com[worst, 3] * 100:.1f} cm")
