@@ -53,8 +53,10 @@ tf2_wanted=$(cat requirements.txt interfaces/requirements-build.txt interfaces/b
 if .venv/bin/python -c "import tf2_msgs.msg" 2>/dev/null && { [ ! -f "$tf2_stamp" ] || [ "$(cat "$tf2_stamp")" = "$tf2_wanted" ]; }; then
   echo "present"   # the system's (real ROS install), or ours from an earlier run
 else
+  tf2_started=$SECONDS
   interfaces/build_tf2_msgs.sh
   echo "$tf2_wanted" > "$tf2_stamp"
+  echo "tf2_msgs built in $((SECONDS - tf2_started)) s"
 fi
 
 step "Source packages importable from the venv (like pip install -e)"

@@ -29,7 +29,7 @@ fi
 
 python_include=$("$python" -c "import sysconfig; print(sysconfig.get_paths()['include'])")
 numpy_include=$("$python" -c "import numpy; print(numpy.get_include())")
-grep -rlE "/opt/python/cp3[0-9]+-cp3[0-9]+" --include="*Export.cmake" "$venv/share" 2>/dev/null | while read -r file; do
+{ grep -rlE "/opt/python/cp3[0-9]+-cp3[0-9]+" --include="*Export.cmake" "$venv/share" 2>/dev/null || true; } | while read -r file; do
   sed -i -E "s#/opt/python/cp3[0-9]+-cp3[0-9]+/include/python3\.[0-9]+#$python_include#g; \
              s#/opt/python/cp3[0-9]+-cp3[0-9]+/lib/python3\.[0-9]+/site-packages/numpy/_core/include#$numpy_include#g" "$file"
 done
