@@ -11,7 +11,7 @@ from __future__ import annotations
 from rclpy.node import Node
 from std_msgs.msg import String
 
-from door_contract.converters.transforms import tf_message, tf_messages_available
+from door_contract.converters.transforms import TfMessageBuffer, tf_message, tf_messages_available
 from door_contract.node_support import create_contract_publisher
 from door_contract.topics import Topics
 from door_robot.meshes import MeshUris
@@ -34,8 +34,9 @@ class RobotStatePublication:
         self._static = create_contract_publisher(node, Topics.TF_STATIC)
         self._static.publish(tf_message(self.tree.static_transforms(), now))
         self._tf = create_contract_publisher(node, Topics.TF)
+        self._buffer = TfMessageBuffer()
 
     def publish(self, now: float) -> None:
         """/tf with every moving transform at sim time ``now`` (s)."""
         if self._tf is not None:
-            self._tf.publish(tf_message(self.tree.moving_transforms(), now))
+            self._tf.publish(self._buffer.message(self.tree.moving_transforms(), now))

@@ -1,130 +1,74 @@
 """The robot's TF tree from the simulation (ROS-free): what /tf and /tf_static carry.
 
-Frames follow REP-105 and the URDF:
+Frames follow REP-105 and the URDF, as ``robot_state_publisher`` publishes them:
 
 * ``odom → base_link``: the robot's base pose in the world, which is ``odom`` (the sim's
   ground truth stands in for odometry). If the URDF's root link has another name
   (``pelvis``), ``base_link → <root>`` is a static identity.
-* one transform per URDF joint, ``parent link → child link``:
-  ``parent_T_child = (odom_T_parent)⁻¹ · odom_T_child``, both link frames read from the sim.
-  Fixed joints never change and go once to /tf_static; moving joints (revolute, continuous,
-  prismatic, floating) go to /tf at every publication.
+* one transform per URDF joint, ``parent link → child link``, ``O · M(q)`` from the joint's
+  origin and axis at the sim's joint position (:mod:`door_sim_bridge.urdf_joints`): fixed
+  joints once on /tf_static, moving joints on /tf at every publication (one batch read of the
+  joint positions and one vectorised product: the robot's 32 joints cost well under a
+  physics step).
 * ``<camera link> → head_camera_optical_frame`` (the frame of the head camera's images and
   CameraInfo): the constant offset of the optical frame (z forward, x right, y down) from
   the profile's camera link, on /tf_static.
 
-Composing the transforms from ``odom`` down to a link gives back the sim's pose of that
-link (tests/sim_bridge check it for every link).
+Composing the transforms from ``odom`` down to a link gives back the sim's own pose of that
+link (tests/sim_bridge check it for every link of TALOS).
 """
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ElementTree
-from dataclasses import dataclass
+from collections.abc import Mapping
 from typing import Protocol
 
 import numpy as np
 
 from door_contract.frames import Frame, FrameTransform
-from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.urdf_joints import joint_transforms, root_link, urdf_joints
 from door_sim_bridge.world.transforms import invert
 
-FIXED_JOINT_TYPES = frozenset({"fixed"})
 
-
-class LinkPoses(Protocol):
+class RobotState(Protocol):
     """What the tree reads from the world (``DoorWorld`` has both)."""
 
-    def link_pose(self, link: str) -> np.ndarray: ...
+    def joint_positions(self) -> Mapping[str, float]: ...
 
     def base_pose(self) -> np.ndarray: ...
-
-
-@dataclass(frozen=True)
-class UrdfJoint:
-    """One joint of a URDF: its name, type, parent and child links."""
-
-    name: str
-    kind: str
-    parent: str
-    child: str
-
-    @property
-    def moving(self) -> bool:
-        return self.kind not in FIXED_JOINT_TYPES
-
-
-def urdf_joints(urdf_text: str) -> tuple[UrdfJoint, ...]:
-    """The joints of a URDF document; SimulationError if it is not a URDF with a tree."""
-    try:
-        robot = ElementTree.fromstring(urdf_text)
-    except ElementTree.ParseError as error:
-        raise SimulationError(f"robot description is not XML: {error}") from None
-    joints = []
-    for element in robot.iter("joint"):
-        parent, child = element.find("parent"), element.find("child")
-        if parent is None or child is None:  # <joint> inside <transmission> has neither
-            continue
-        joints.append(UrdfJoint(element.get("name", ""), element.get("type", ""),
-                                parent.get("link", ""), child.get("link", "")))
-    if robot.tag != "robot" or not joints:
-        raise SimulationError("robot description has no <robot> with joints")
-    return tuple(joints)
-
-
-def root_link(joints: tuple[UrdfJoint, ...]) -> str:
-    """The one link that is no joint's child."""
-    roots = {j.parent for j in joints} - {j.child for j in joints}
-    if len(roots) != 1:
-        raise SimulationError(f"robot description must have one root link, found {sorted(roots)}")
-    return roots.pop()
 
 
 class RobotTfTree:
     """The static and moving transforms of one robot in one world.
 
-    ``optical_offset`` is ``camera_link_T_optical``; the static part is computed once, at
-    construction, from the world's current link poses.
+    ``optical_offset`` is ``camera_link_T_optical``. Moving joints the sim does not simulate
+    (absent from its joint positions) are left out and named in ``skipped``.
     """
 
-    def __init__(self, world: LinkPoses, urdf_text: str, camera_link: str,
-                 optical_offset: np.ndarray) -> None:
+    def __init__(self, world: RobotState, urdf_text: str, camera_link: str, optical_offset: np.ndarray) -> None:
         self._world = world
         joints = urdf_joints(urdf_text)
         self.root = root_link(joints)
-        known = self._links_known_to(world, {self.root} | {j.child for j in joints})
-        self.joints = tuple(j for j in joints if j.parent in known and j.child in known)
-        self.skipped = tuple(j.name for j in joints if j not in self.joints)
+        simulated = set(world.joint_positions())
+        self.joints = tuple(j for j in joints if not j.moving or j.name in simulated)
+        self.skipped = tuple(j.name for j in joints if j.moving and j.name not in simulated)
         self._moving = tuple(j for j in self.joints if j.moving)
-        statics = [self._joint_transform(j) for j in self.joints if not j.moving]
+        statics = [FrameTransform(j.parent, j.child, j.origin) for j in self.joints if not j.moving]
         statics.append(FrameTransform(camera_link, Frame.HEAD_CAMERA_OPTICAL.value, np.array(optical_offset)))
         if self.root != Frame.BASE_LINK.value:
             statics.append(FrameTransform(Frame.BASE_LINK.value, self.root, np.eye(4)))
         self._static = tuple(statics)
-
-    @staticmethod
-    def _links_known_to(world: LinkPoses, links: set[str]) -> set[str]:
-        known = set()
-        for link in links:
-            try:
-                world.link_pose(link)
-                known.add(link)
-            except SimulationError:
-                pass  # a link the simulator merged away: its joint is skipped
-        return known
-
-    def _joint_transform(self, joint: UrdfJoint) -> FrameTransform:
-        parent, child = self._world.link_pose(joint.parent), self._world.link_pose(joint.child)
-        return FrameTransform(joint.parent, joint.child, invert(parent) @ child)
 
     def static_transforms(self) -> tuple[FrameTransform, ...]:
         """For /tf_static: fixed joints, the camera's optical frame, a base_link alias if needed."""
         return self._static
 
     def moving_transforms(self) -> tuple[FrameTransform, ...]:
-        """For /tf, now: ``odom → base_link`` and every moving joint."""
+        """For /tf, now: ``odom → base_link`` and every moving joint at the sim's positions."""
+        positions = self._world.joint_positions()
+        matrices = joint_transforms(self._moving, np.array([positions[j.name] for j in self._moving]))
         base = FrameTransform(Frame.ODOM.value, Frame.BASE_LINK.value, self._world.base_pose())
-        return (base, *(self._joint_transform(j) for j in self._moving))
+        return (base, *(FrameTransform(j.parent, j.child, m) for j, m in zip(self._moving, matrices)))
 
 
 def compose(transforms: tuple[FrameTransform, ...] | list[FrameTransform], source: str,

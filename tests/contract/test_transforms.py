@@ -4,10 +4,10 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from door_contract.converters.transforms import (frame_transform_to_msg, matrix_to_transform, msg_to_frame_transform,
+from door_contract.converters.transforms import (TfMessageBuffer, frame_transform_to_msg, matrix_to_transform, msg_to_frame_transform,
                                                  tf_message, tf_message_frames, tf_messages_available,
                                                  transform_to_matrix)
-from door_contract.errors import NonFiniteError
+from door_contract.errors import NonFiniteError, ShapeError
 from door_contract.frames import FrameTransform
 
 
@@ -47,3 +47,23 @@ def test_tf_message_holds_every_frame():
     assert [t.child_frame_id for t in msg.transforms] == ["base_link", "head"]
     assert {t.header.stamp.sec for t in msg.transforms} == {1}
     np.testing.assert_allclose(tf_message_frames(msg)[1].matrix, _matrix(4), atol=1e-12)
+
+
+def test_tf_message_refuses_non_finite_or_misshapen_transforms():
+    bad = _matrix(5)
+    bad[1, 1] = np.inf
+    with pytest.raises(NonFiniteError):
+        tf_message([FrameTransform("odom", "base_link", bad)], 0.0)
+    with pytest.raises(ShapeError):
+        tf_message([FrameTransform("odom", "base_link", np.eye(3))], 0.0)
+    assert tf_message([], 0.0).transforms == []
+
+
+def test_buffer_rewrites_numbers_in_place_and_rebuilds_when_frames_change():
+    buffer = TfMessageBuffer()
+    first = buffer.message([FrameTransform("odom", "base_link", _matrix(6))], 1.0)
+    again = buffer.message([FrameTransform("odom", "base_link", _matrix(7))], 2.0)
+    assert again is first and again.transforms[0].header.stamp.sec == 2
+    np.testing.assert_allclose(tf_message_frames(again)[0].matrix, _matrix(7), atol=1e-12)
+    other = buffer.message([FrameTransform("odom", "head", _matrix(7))], 3.0)
+    assert other is not first and other.transforms[0].child_frame_id == "head"

@@ -1,5 +1,6 @@
 """The TF tree (ROS-free): composing /tf_static and /tf from odom down to any link gives the
-sim's pose of that link; fixed joints are static, moving joints are not; bad URDFs are refused."""
+sim's pose of that link (the URDF's joint kinematics agree with PyBullet's); fixed joints are
+static, moving joints are not; joints the sim lacks are named; bad URDFs are refused."""
 
 import numpy as np
 import pytest
@@ -7,7 +8,8 @@ import pytest
 from door_contract.frames import Frame
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.robot_description import loaded_urdf
-from door_sim_bridge.tf_tree import RobotTfTree, compose, root_link, urdf_joints, world_tf_tree
+from door_sim_bridge.tf_tree import RobotTfTree, compose, world_tf_tree
+from door_sim_bridge.urdf_joints import joint_transforms, root_link, urdf_joints
 from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
 from door_contract.geometry import planar_pose
 
@@ -53,36 +55,47 @@ def test_fixed_joints_are_static_and_moving_ones_are_not(world):
     assert len(moving) == 1 + sum(j.moving for j in tree.joints)  # odom → base_link + each moving joint
 
 
-class _TwoLinkWorld:
-    """A world whose simulator knows only some links (as if it had merged the others away)."""
+class _World:
+    """A world that simulates only some joints (as if it had merged the others away)."""
 
-    def __init__(self, known):
-        self.known = known
+    def __init__(self, positions):
+        self.positions = positions
 
-    def link_pose(self, link):
-        if link not in self.known:
-            raise SimulationError(f"no link {link!r}")
-        return planar_pose(len(link), 0.0, 0.0)
+    def joint_positions(self):
+        return dict(self.positions)
 
     def base_pose(self):
         return np.eye(4)
 
 
-URDF = """<robot name="r"><link name="base_link"/><link name="a"/><link name="b"/>
-  <joint name="j1" type="revolute"><parent link="base_link"/><child link="a"/></joint>
-  <joint name="j2" type="fixed"><parent link="a"/><child link="b"/></joint>
+URDF = """<robot name="r"><link name="base_link"/><link name="a"/><link name="b"/><link name="c"/>
+  <joint name="j1" type="revolute"><parent link="base_link"/><child link="a"/>
+    <origin xyz="0 0 1" rpy="0 0 1.5707963267948966"/><axis xyz="0 0 2"/></joint>
+  <joint name="j2" type="fixed"><parent link="a"/><child link="b"/><origin xyz="1 0 0"/></joint>
+  <joint name="j3" type="prismatic"><parent link="b"/><child link="c"/><axis xyz="0 1 0"/></joint>
   <transmission name="t"><joint name="j1"/></transmission></robot>"""
 
 
-def test_joints_of_links_the_sim_lacks_are_skipped_and_named():
-    tree = RobotTfTree(_TwoLinkWorld({"base_link", "a"}), URDF, "a", np.eye(4))
-    assert tree.skipped == ("j2",)
+def test_joint_kinematics_follow_origin_and_axis():
+    j1, _, j3 = urdf_joints(URDF)
+    np.testing.assert_allclose(j1.axis, (0.0, 0.0, 1.0))
+    turned, slid = joint_transforms([j1, j3], np.array([np.pi / 2, 0.25]))
+    np.testing.assert_allclose(turned[:3, 3], (0.0, 0.0, 1.0), atol=1e-12)
+    np.testing.assert_allclose(turned[:3, 0], (-1.0, 0.0, 0.0), atol=1e-12)  # yaw 90° of the origin + 90° of q
+    np.testing.assert_allclose(slid[:3, 3], (0.0, 0.25, 0.0), atol=1e-12)
+
+
+def test_joints_the_sim_lacks_are_skipped_and_named():
+    tree = RobotTfTree(_World({"j1": 0.0}), URDF, "a", np.eye(4))
+    assert tree.skipped == ("j3",)
     assert [t.child for t in tree.moving_transforms()] == [Frame.BASE_LINK.value, "a"]
+    np.testing.assert_allclose(compose([*tree.static_transforms(), *tree.moving_transforms()], "odom", "b")[:3, 3],
+                               (0.0, 1.0, 1.0), atol=1e-12)
 
 
 def test_a_root_not_named_base_link_gets_an_alias():
     text = URDF.replace("base_link", "pelvis")
-    tree = RobotTfTree(_TwoLinkWorld({"pelvis", "a", "b"}), text, "a", np.eye(4))
+    tree = RobotTfTree(_World({"j1": 0.0, "j3": 0.0}), text, "a", np.eye(4))
     alias = [t for t in tree.static_transforms() if t.child == "pelvis"]
     assert alias and alias[0].parent == Frame.BASE_LINK.value
     np.testing.assert_allclose(alias[0].matrix, np.eye(4))
@@ -93,6 +106,10 @@ def test_a_root_not_named_base_link_gets_an_alias():
     ("<robot name='r'><link name='a'/></robot>", "no <robot> with joints"),
     ("<robot><joint name='j' type='fixed'><parent link='a'/><child link='b'/></joint>"
      "<joint name='k' type='fixed'><parent link='c'/><child link='d'/></joint></robot>", "one root link"),
+    ("<robot><joint name='j' type='fixed'><parent link='a'/><child link='b'/><origin xyz='1 2'/></joint></robot>",
+     "three numbers"),
+    ("<robot><joint name='j' type='revolute'><parent link='a'/><child link='b'/><axis xyz='0 0 0'/></joint></robot>",
+     "zero axis"),
 ])
 def test_bad_descriptions_are_refused(text, match):
     with pytest.raises(SimulationError, match=match):

@@ -75,6 +75,9 @@ def graph(workspace, rclpy_context, tmp_path):
             return bool(port) or bridge.poll() is not None
 
         assert spin_until(detector.executor, port_logged, 60.0) and port, bridge_log.read_text()
+        # both up before a test can end: a SIGINT during start-up would interrupt an import
+        assert spin_until(detector.executor, lambda: "fsm_supervisor" in detector.node.get_node_names()
+                          or fsm.poll() is not None, 60.0), fsm_log.read_text()
         client = FoxgloveClient(f"ws://127.0.0.1:{port[0]}")
         yield detector, client, (bridge_log, fsm_log)
     finally:  # the processes stop even when the set-up failed (a leaked FSM would answer the next test)
