@@ -67,6 +67,8 @@ def test_streams_arrive(listener):
     assert image.encoding == "rgb8" and image.width == 640 and image.height == 480
     assert listener.got["depth"][-1].encoding == "32FC1"
     assert "arm_right_4_joint" in listener.got["joints"][-1]
+    # the first clock message can arrive together with the first images: wait for a second one
+    assert spin_until(listener.executor, lambda: len(listener.got["clock"]) >= 2, 30.0)
     times = [c.clock.sec + c.clock.nanosec * 1e-9 for c in listener.got["clock"]]
     assert times[-1] > times[0]
 
