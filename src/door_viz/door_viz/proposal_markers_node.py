@@ -4,14 +4,17 @@ Listens to the proposals (door estimate, footstep plans, trajectories) and the F
 requests (how the door opens, how far it is open), and publishes the whole picture as one
 latched MarkerArray on /door_task/proposal_markers (:mod:`door_viz.picture`). A trajectory's
 hand paths come from the latest /joint_states and /odom through Pinocchio (a trajectory that
-arrives before either is drawn as soon as both are there). A message that breaks the contract
-is logged and leaves the picture as it was.
+arrives before either is drawn as soon as both are there); those two streams are kept as bytes
+and decoded only when a trajectory needs them, so following them costs the graph almost
+nothing. A message that breaks the contract is logged and leaves the picture as it was.
 """
 
 from __future__ import annotations
 
 from nav_msgs.msg import Odometry, Path
+import numpy as np
 from rclpy.node import Node
+from rclpy.serialization import deserialize_message
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 from trajectory_msgs.msg import JointTrajectory
@@ -45,14 +48,14 @@ class ProposalMarkersNode(Node):
         except RobotModelError as error:
             raise ParameterRangeError(f"parameter 'robot_profile': {error}") from None
         self.picture = ProposalPicture(SoleSize(profile.walking.foot_length, profile.walking.foot_width))
-        self.joints: dict[str, float] | None = None
-        self.base_pose = None
+        self.latest: dict[str, bytes] = {}  # topic -> serialized last message (/joint_states, /odom)
         self.pending_trajectory: JointPath | None = None  # waiting for /joint_states and /odom
         self.heartbeat = Heartbeat(self)
         self.markers_pub = create_contract_publisher(self, Topics.PROPOSAL_MARKERS)
         sub = lambda topic, callback: create_contract_subscription(self, topic, callback)
-        sub(Topics.JOINT_STATES, self._on_joint_states)
-        sub(Topics.ODOM, self._on_odom)
+        for topic in (Topics.JOINT_STATES, Topics.ODOM):
+            self.create_subscription(topic.msg_class(), topic.name, lambda data, t=topic.name: self._keep(t, data),
+                                     topic.qos.to_profile(), raw=True)
         sub(Topics.DOOR_ESTIMATE, self._guarded(self._on_door))
         sub(Topics.FOOTSTEP_REQUEST, self._guarded(lambda m: self._on_request(decode(FootstepRequest, m.data))))
         sub(Topics.MOTION_REQUEST, self._guarded(lambda m: self._on_request(decode(MotionRequest, m.data))))
@@ -74,23 +77,19 @@ class ProposalMarkersNode(Node):
                                                                 self.get_clock().now().nanoseconds * 1e-9))
         return guarded
 
-    def _on_joint_states(self, msg: JointState) -> None:
-        try:
-            self.joints = joint_state_to_positions(msg)
-        except ContractError:
-            return  # the last good state stays; the bridge's own tests cover its messages
-        self._draw_pending_trajectory()
+    def _keep(self, topic: str, data: bytes) -> None:
+        first = topic not in self.latest
+        self.latest[topic] = data
+        if first and self.pending_trajectory is not None:
+            self._guarded(self._show_hand_paths)(self.pending_trajectory)
 
-    def _on_odom(self, msg: Odometry) -> None:
-        try:
-            self.base_pose = pose_to_matrix(msg.pose.pose)
-        except ContractError:
-            return
-        self._draw_pending_trajectory()
-
-    def _draw_pending_trajectory(self) -> None:
-        if self.pending_trajectory is not None and self.joints is not None and self.base_pose is not None:
-            self._guarded(lambda path: self._show_hand_paths(path))(self.pending_trajectory)
+    def _robot_state(self) -> tuple[dict[str, float], np.ndarray] | None:
+        """The latest joint positions and base pose, decoded now; None until both arrived."""
+        if not {Topics.JOINT_STATES.name, Topics.ODOM.name} <= set(self.latest):
+            return None
+        joints = deserialize_message(self.latest[Topics.JOINT_STATES.name], JointState)
+        odom = deserialize_message(self.latest[Topics.ODOM.name], Odometry)
+        return joint_state_to_positions(joints), pose_to_matrix(odom.pose.pose)
 
     def _on_door(self, msg: String) -> None:
         self.picture.show_door(decode(DoorEstimate, msg.data))
@@ -103,13 +102,16 @@ class ProposalMarkersNode(Node):
 
     def _on_trajectory(self, msg: JointTrajectory) -> bool:
         self.pending_trajectory = msg_to_joint_path(msg)
-        if self.joints is None or self.base_pose is None:
-            return False  # drawn when both have arrived
         return self._show_hand_paths(self.pending_trajectory)
 
     def _show_hand_paths(self, path: JointPath) -> bool:
+        """Draw ``path``'s hand paths; False (kept pending) until /joint_states and /odom arrived."""
+        state = self._robot_state()
+        if state is None:
+            return False
         self.pending_trajectory = None
-        self.picture.show_hand_paths(hand_paths(self.kinematics, self.joints, path, self.base_pose))
+        joints, base_pose = state
+        self.picture.show_hand_paths(hand_paths(self.kinematics, joints, path, base_pose))
         return True
 
 
