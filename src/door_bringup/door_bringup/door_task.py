@@ -75,7 +75,7 @@ class TaskOptions:
         sim_time = {"use_sim_time": "true"}
         return {"sim_bridge": _ros_args(sim), "fsm_supervisor": _ros_args(fsm),
                 "door_detector": _ros_args(sim_time), "footstep_planner": _ros_args(sim_time),
-                "trajectory_optimizer": _ros_args(sim_time), "proposal_markers": _ros_args(sim_time),
+                "trajectory_optimizer": _ros_args(sim_time), "proposal_markers": [],
                 "foxglove_bridge": _ros_args({**sim_time, "port": self.foxglove_port})}
 
 
@@ -119,6 +119,7 @@ class ScriptedOperator(Node):
 
     def _on_odom(self, msg: Odometry) -> None:
         self.base_xy = (round(msg.pose.pose.position.x, 3), round(msg.pose.pose.position.y, 3))
+        self.progress.odom(msg)
 
 
 def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:

@@ -22,7 +22,7 @@ class TaskProgress:
     sim_s: float | None = None
     state: str | None = None
     base_xy: tuple[float, float] | None = None
-    door_angle: float | None = None  # rad, the simulated hinge (ground truth)
+    door_angle: float | None = None  # rad, the angle the FSM's last planning request plans with
 
     def update(self, **changes) -> TaskProgress:
         return replace(self, **changes)

@@ -3,10 +3,10 @@
 Listens to the proposals (door estimate, footstep plans, trajectories) and the FSM's planning
 requests (how the door opens, how far it is open), and publishes the whole picture as one
 latched MarkerArray on /door_task/proposal_markers (:mod:`door_viz.picture`). A trajectory's
-hand paths come from the latest /joint_states and /odom through Pinocchio (a trajectory that
-arrives before either is drawn as soon as both are there); those two streams are kept as bytes
-and decoded only when a trajectory needs them, so following them costs the graph almost
-nothing. A message that breaks the contract is logged and leaves the picture as it was.
+hand paths come from the robot's configuration and base when the trajectory arrives, through
+Pinocchio: the node subscribes to /joint_states and /odom only then, takes one message of each
+and unsubscribes (following both 50 Hz streams cost ~10 % of a core in rclpy's executor). A
+message that breaks the contract is logged and leaves the picture as it was.
 """
 
 from __future__ import annotations
@@ -48,14 +48,12 @@ class ProposalMarkersNode(Node):
         except RobotModelError as error:
             raise ParameterRangeError(f"parameter 'robot_profile': {error}") from None
         self.picture = ProposalPicture(SoleSize(profile.walking.foot_length, profile.walking.foot_width))
-        self.latest: dict[str, bytes] = {}  # topic -> serialized last message (/joint_states, /odom)
+        self.sampled: dict[str, bytes] = {}  # topic -> one serialized message (/joint_states, /odom)
+        self.sampling = []  # the subscriptions taking them, while a trajectory waits
         self.pending_trajectory: JointPath | None = None  # waiting for /joint_states and /odom
         self.heartbeat = Heartbeat(self)
         self.markers_pub = create_contract_publisher(self, Topics.PROPOSAL_MARKERS)
         sub = lambda topic, callback: create_contract_subscription(self, topic, callback)
-        for topic in (Topics.JOINT_STATES, Topics.ODOM):
-            self.create_subscription(topic.msg_class(), topic.name, lambda data, t=topic.name: self._keep(t, data),
-                                     topic.qos.to_profile(), raw=True)
         sub(Topics.DOOR_ESTIMATE, self._guarded(self._on_door))
         sub(Topics.FOOTSTEP_REQUEST, self._guarded(lambda m: self._on_request(decode(FootstepRequest, m.data))))
         sub(Topics.MOTION_REQUEST, self._guarded(lambda m: self._on_request(decode(MotionRequest, m.data))))
@@ -72,23 +70,33 @@ class ProposalMarkersNode(Node):
                 self.get_logger().warning(f"{type(msg).__name__} ignored: {error}")
                 self.heartbeat.update(Health.WARN, f"ignored: {error}")
                 return
-            if changed:
-                self.markers_pub.publish(shapes_to_marker_array(self.picture.shapes(),
-                                                                self.get_clock().now().nanoseconds * 1e-9))
+            if changed:  # unstamped: a viewer draws them with the latest transforms (odom is fixed)
+                self.markers_pub.publish(shapes_to_marker_array(self.picture.shapes()))
         return guarded
 
+    def _sample_robot_state(self) -> None:
+        """Subscribe to /joint_states and /odom until one message of each has arrived."""
+        self.sampled.clear()
+        if not self.sampling:
+            self.sampling = [self.create_subscription(topic.msg_class(), topic.name,
+                                                      lambda data, t=topic.name: self._keep(t, data),
+                                                      topic.qos.to_profile(), raw=True)
+                             for topic in (Topics.JOINT_STATES, Topics.ODOM)]
+
     def _keep(self, topic: str, data: bytes) -> None:
-        first = topic not in self.latest
-        self.latest[topic] = data
-        if first and self.pending_trajectory is not None:
+        self.sampled[topic] = data
+        if len(self.sampled) == 2 and self.pending_trajectory is not None:
+            for subscription in self.sampling:
+                self.destroy_subscription(subscription)
+            self.sampling = []
             self._guarded(self._show_hand_paths)(self.pending_trajectory)
 
     def _robot_state(self) -> tuple[dict[str, float], np.ndarray] | None:
-        """The latest joint positions and base pose, decoded now; None until both arrived."""
-        if not {Topics.JOINT_STATES.name, Topics.ODOM.name} <= set(self.latest):
+        """The sampled joint positions and base pose; None until both arrived."""
+        if len(self.sampled) < 2:
             return None
-        joints = deserialize_message(self.latest[Topics.JOINT_STATES.name], JointState)
-        odom = deserialize_message(self.latest[Topics.ODOM.name], Odometry)
+        joints = deserialize_message(self.sampled[Topics.JOINT_STATES.name], JointState)
+        odom = deserialize_message(self.sampled[Topics.ODOM.name], Odometry)
         return joint_state_to_positions(joints), pose_to_matrix(odom.pose.pose)
 
     def _on_door(self, msg: String) -> None:
@@ -102,10 +110,11 @@ class ProposalMarkersNode(Node):
 
     def _on_trajectory(self, msg: JointTrajectory) -> bool:
         self.pending_trajectory = msg_to_joint_path(msg)
-        return self._show_hand_paths(self.pending_trajectory)
+        self._sample_robot_state()
+        return False  # drawn when the robot's state has been sampled
 
     def _show_hand_paths(self, path: JointPath) -> bool:
-        """Draw ``path``'s hand paths; False (kept pending) until /joint_states and /odom arrived."""
+        """Draw ``path``'s hand paths from the sampled robot state."""
         state = self._robot_state()
         if state is None:
             return False
