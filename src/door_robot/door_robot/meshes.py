@@ -4,7 +4,7 @@ A URDF names its meshes ``package://<package>/<path>``. The package's root direc
 found, in this order:
 
 1. the ament index (``AMENT_PREFIX_PATH``), as RViz and ``ros2`` tools resolve it on a real
-   install (``ros-jazzy-example-robot-data`` registers ``example-robot-data`` there);
+   install;
 2. the pip package's prefix ``<site-packages>/cmeel.prefix/share/<package>`` (example-robot-data
    from PyPI ships its own ament index there);
 3. next to the URDF: an ancestor directory named ``<package>``, or an ancestor's child of that
