@@ -41,6 +41,9 @@ class QosSpec:
 
 #: Commands and events: every message matters.
 EVENTS = QosSpec(depth=10)
+#: Requests, outcomes, cancels and operator commands: every one answered, so a burst of
+#: hundreds is queued, not overwritten (issue #12: depth 10 let 77 of 100 requests vanish).
+REQUESTS = QosSpec(depth=1000)
 #: Sensor streams between processes: RELIABLE (BEST_EFFORT lost ~15 % of VGA frames here).
 SENSOR = QosSpec(depth=5)
 #: Latest-value topics a late joiner must still receive (state, approval request).
@@ -49,6 +52,8 @@ LATCHED = QosSpec(depth=1, durability=Durability.TRANSIENT_LOCAL)
 TF_STREAM = QosSpec(depth=100)
 #: /clock: many small messages, only the newest matters.
 CLOCK = QosSpec(depth=1, reliability=Reliability.BEST_EFFORT)
+#: Service requests and responses: every call answered, a burst of hundreds queued.
+SERVICE = QosSpec(depth=1000)
 
 
 SUBSCRIPTION_DEPTH = 100

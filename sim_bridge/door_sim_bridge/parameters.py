@@ -36,6 +36,10 @@ BRIDGE_PARAMETERS = (
                   minimum=0.5, maximum=6.0),
     ParameterSpec("stance_lateral", 0.0, "robot lateral offset from the doorway centre", unit="m",
                   minimum=-2.0, maximum=2.0),
+    ParameterSpec("supervisor_timeout", 3.0, "stop every execution when the supervisor's heartbeat "
+                  "(/diagnostics, 1 Hz) is gone this long, wall clock; 0 disables the dead-man", unit="s",
+                  minimum=0.0, maximum=600.0),
+    ParameterSpec("supervisor_node", "fsm_supervisor", "node whose heartbeat the dead-man watches"),
     ParameterSpec("stance_yaw", 0.0, "robot yaw relative to facing the door", unit="rad",
                   minimum=-1.0, maximum=1.0),
 )

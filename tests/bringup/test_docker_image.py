@@ -15,8 +15,10 @@ IMPORT_KEYS = {  # top-level module -> rosdep key (rosdistro's rosdep/python.yam
     "numpy": "python3-numpy", "scipy": "python3-scipy", "cv2": "python3-opencv", "yaml": "python3-yaml",
     "matplotlib": "python3-matplotlib", "open3d": "python3-open3d-pip", "pybullet": "python3-pybullet-pip",
     "rosbags": "python3-rosbags-pip", "osqp": "python3-osqp-pip", "foxglove": "python3-foxglove-sdk-pip",
-    "pinocchio": "pinocchio",
+    "pinocchio": "pinocchio", "placo": "python3-placo-pip",
 }
+#: imported only when installed by hand, for a benchmark (README "Peer benchmark"): no dependency
+OPTIONAL_IMPORTS = {"tesseract_robotics"}
 ROS_PACKAGES = {"rclpy", "rcl_interfaces", "builtin_interfaces", "std_msgs", "geometry_msgs", "sensor_msgs", "nav_msgs",
                 "trajectory_msgs", "visualization_msgs", "diagnostic_msgs", "std_srvs", "rosgraph_msgs", "tf2_msgs",
                 "launch", "launch_ros", "ament_index_python", "ros2bag", "rosbag2_storage_mcap"}
@@ -38,7 +40,7 @@ def _imports(workspace, folder, own_modules):
                 modules |= {alias.name.split(".")[0] for alias in node.names}
             elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
                 modules.add(node.module.split(".")[0])
-    return {m for m in modules if m not in sys.stdlib_module_names and m not in own_modules}
+    return {m for m in modules if m not in sys.stdlib_module_names and m not in own_modules | OPTIONAL_IMPORTS}
 
 
 @pytest.mark.parametrize("folder", PACKAGES)

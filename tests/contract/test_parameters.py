@@ -44,3 +44,12 @@ def test_choices_and_unknown_names():
         autonomy.validate("yolo")
     with pytest.raises(ParameterRangeError, match="unknown parameter"):
         validate_all([autonomy], {"autonmy": "full"})
+
+
+def test_an_inverted_range_is_one_clear_error():
+    from door_contract.errors import ParameterRangeError
+    from door_contract.parameters import require_ordered
+
+    require_ordered({"low": 0.8, "high": 1.0}, "low", "high")
+    with pytest.raises(ParameterRangeError, match="'low' must not exceed 'high'"):
+        require_ordered({"low": 1.2, "high": 1.0}, "low", "high")

@@ -1,6 +1,10 @@
 """The TF tree (ROS-free): composing /tf_static and /tf from odom down to any link gives the
-sim's pose of that link (the URDF's joint kinematics agree with PyBullet's); fixed joints are
-static, moving joints are not; joints the sim lacks are named; bad URDFs are refused."""
+sim's pose of that link (the URDF's joint kinematics agree with PyBullet's), for the physical
+robot (box soles, floating base) and the teleported kinematic one; the description is the URDF
+the sim loaded with the profile's mesh names; fixed joints are static, moving joints are not;
+joints the sim lacks are named; bad URDFs are refused."""
+
+import xml.etree.ElementTree as ET
 
 import numpy as np
 import pytest
@@ -10,13 +14,22 @@ from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.robot_description import loaded_urdf
 from door_sim_bridge.tf_tree import RobotTfTree, compose, world_tf_tree
 from door_sim_bridge.urdf_joints import joint_transforms, root_link, urdf_joints
-from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
+from door_sim_bridge.world import DoorWorld, RobotMode, StanceConfig, WorldConfig
 from door_contract.geometry import planar_pose
+
+STANCE = StanceConfig(distance=2.0, lateral_offset=0.3, yaw=0.4)
 
 
 @pytest.fixture(scope="module")
 def world():
-    with DoorWorld(WorldConfig(stance=StanceConfig(distance=2.0, lateral_offset=0.3, yaw=0.4))) as world:
+    """The physical robot (the default): what the sim bridge runs."""
+    with DoorWorld(WorldConfig(stance=STANCE)) as world:
+        yield world
+
+
+@pytest.fixture(scope="module")
+def kinematic_world():
+    with DoorWorld(WorldConfig(stance=STANCE, robot_mode=RobotMode.KINEMATIC)) as world:
         yield world
 
 
@@ -24,17 +37,46 @@ def _all_transforms(tree: RobotTfTree):
     return [*tree.static_transforms(), *tree.moving_transforms()]
 
 
-def test_every_link_composes_to_the_sims_pose(world):
-    tree = world_tf_tree(world, loaded_urdf(world)[0])
-    world.set_joint_targets({"arm_right_4_joint": -1.2, "torso_1_joint": 0.3, "head_2_joint": 0.2})
-    world.step(240)
-    world.set_base_pose(planar_pose(-1.5, 0.2, -0.3, world.profile.base_height))
+def _assert_every_link_composes_to_the_sims_pose(world, tree: RobotTfTree) -> None:
     transforms = _all_transforms(tree)
     links = {j.child for j in tree.joints} | {tree.root}
     assert len(links) == 60 and not tree.skipped
     for link in links:
         np.testing.assert_allclose(compose(transforms, Frame.ODOM.value, link), world.link_pose(link),
                                    atol=1e-6, err_msg=link)  # PyBullet quaternions are unit to ~1e-7
+
+
+def test_every_link_of_the_physical_robot_composes_to_the_sims_pose(world):
+    tree = world_tf_tree(world, loaded_urdf(world)[0])
+    world.set_joint_targets({"arm_right_4_joint": -1.2, "torso_1_joint": 0.3, "head_2_joint": 0.2})
+    world.step(240)
+    assert not world.fallen
+    _assert_every_link_composes_to_the_sims_pose(world, tree)
+
+
+def test_every_link_of_the_teleported_kinematic_robot_composes_to_the_sims_pose(kinematic_world):
+    tree = world_tf_tree(kinematic_world, loaded_urdf(kinematic_world)[0])
+    kinematic_world.set_joint_targets({"arm_right_4_joint": -1.2, "torso_1_joint": 0.3, "head_2_joint": 0.2})
+    kinematic_world.step(240)
+    kinematic_world.set_base_pose(planar_pose(-1.5, 0.2, -0.3, kinematic_world.profile.base_height))
+    _assert_every_link_composes_to_the_sims_pose(kinematic_world, tree)
+
+
+def _meshes(text: str, element: str = "") -> list[str]:
+    return [mesh.get("filename") for mesh in ET.fromstring(text).iterfind(f".//{element}//mesh" if element else ".//mesh")]
+
+
+def test_the_description_is_the_loaded_urdf_with_the_profiles_mesh_names(world, kinematic_world):
+    text, path = loaded_urdf(world)
+    loaded = world.robot.urdf_text
+    assert all(name.startswith("/") for name in _meshes(loaded))  # the sim's copy: absolute paths
+    assert _meshes(text, "visual") == _meshes(path.read_text(), "visual")  # what a viewer draws
+    assert set(_meshes(text)) <= set(_meshes(path.read_text())) and all(m.startswith("package://") for m in _meshes(text))
+    assert [(j.name, j.parent, j.child) for j in urdf_joints(text)] == \
+        [(j.name, j.parent, j.child) for j in urdf_joints(loaded)]
+    soles = {c.get("name") for c in ET.fromstring(text).iter("collision") if c.find("geometry/box") is not None}
+    assert {f"{frame}_box" for frame in world.profile.feet.values()} <= soles  # the box soles the sim stands on
+    assert loaded_urdf(kinematic_world)[0] == path.read_text()  # the kinematic sim loads the profile's file
 
 
 def test_camera_optical_frame_is_the_images_frame(world):

@@ -69,4 +69,4 @@ def test_shipped_layout_is_the_generated_one_and_names_only_contract_topics():
         named |= {config["topicPath"].split(".")[0]} if "topicPath" in config else set()
     assert named <= names and {Topics.ROBOT_DESCRIPTION.name, Topics.PROPOSAL_MARKERS.name} <= named
     buttons = [json.loads(c["value"])["data"] for k, c in configs.items() if k.startswith("Publish!")]
-    assert {"pause", "resume", "abort"} <= set(buttons) and "approve 1" in buttons
+    assert {"pause", "stop", "resume", "abort"} <= set(buttons) and "approve 1" in buttons

@@ -4,9 +4,9 @@
               [--operator auto|console] [--seed 0] [--backend sqp|chomp] [--run-dir DIR]
               [--foxglove [--foxglove-port 8765]]
 
-Starts the sim bridge and the four nodes as separate processes (what ``ros2 launch
-door_bringup door_task.launch.py`` does on a real install), records every topic into a
-rosbag2 bag, plays the operator (``auto`` approves every request on
+Starts the sim bridge, the four nodes and the proposal markers as separate processes (what
+``ros2 launch door_bringup door_task.launch.py`` does on a real install), records every topic
+into a rosbag2 bag, plays the operator (``auto`` approves every request on
 /door_task/approval_request; ``console`` leaves it to you: ``./ros2 run door_fsm
 operator_console`` in another terminal), waits for the FSM's TaskReport, prints a table in
 the form of seed 001's Table I, stops the graph with SIGINT, and writes the run folder:
@@ -36,9 +36,11 @@ from door_bringup.progress_monitor import ProgressMonitor
 from door_bringup.run_plots import plot_run
 from door_bringup.table_one import format_table, phase_rows
 from door_bringup.workspace import Workspace, repository_root
+from door_contract.network import keep_discovery_local
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import TaskReport, decode
 from door_contract.topics import Topics
+from door_fsm.operator_commands import request_id_of
 
 RECORDER = NodeLaunch("door_bringup", "bag_record", "bag_recorder")
 
@@ -72,11 +74,11 @@ class TaskOptions:
                "depth_noise": self.depth_noise, "wind_amplitude": self.wind, "door_width": self.door_width,
                "handle_height": self.handle_height, "camera_rate": self.camera_rate}
         fsm = {"opening": self.opening, "autonomy": self.autonomy, "backend": self.backend}
-        sim_time = {"use_sim_time": "true"}
-        return {"sim_bridge": _ros_args(sim), "fsm_supervisor": _ros_args(fsm),
-                "door_detector": _ros_args(sim_time), "footstep_planner": _ros_args(sim_time),
-                "trajectory_optimizer": _ros_args(sim_time), "proposal_markers": [],
-                "foxglove_bridge": _ros_args({**sim_time, "port": self.foxglove_port})}
+        own = {"sim_bridge": sim, "fsm_supervisor": fsm,
+               "foxglove_bridge": {} if self.foxglove_port is None else {"port": self.foxglove_port}}
+        return {launch.node_name: _ros_args({**own.get(launch.node_name, {}),
+                                             **({"use_sim_time": True} if launch.use_sim_time else {})})
+                for launch in (*GRAPH, FOXGLOVE_BRIDGE)}
 
 
 def _ros_args(values: dict) -> list[str]:
@@ -105,9 +107,10 @@ class ScriptedOperator(Node):
     def _on_request(self, msg: String) -> None:
         if msg.data:
             self.progress.say(f"  [approval request] {msg.data}")
-            if self.approve:
-                self.command_pub.publish(String(data="approve"))
-                self.progress.say("  [operator] approve")
+            request_id = request_id_of(msg.data)
+            if self.approve and request_id is not None:
+                self.command_pub.publish(String(data=f"approve {request_id}"))
+                self.progress.say(f"  [operator] approve {request_id}")
 
     def _on_state(self, msg: String) -> None:
         if not self.states or self.states[-1] != msg.data:
@@ -127,6 +130,7 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
     supervisor = ProcessSupervisor(workspace, run_dir / "logs")
     recorder = ProcessSupervisor(workspace, run_dir / "logs")  # stopped after the graph: the bag ends with DONE
     overrides = options.node_overrides()
+    keep_discovery_local()  # the scripted operator's participant
     rclpy.init()
     operator = ScriptedOperator(options.operator == "auto")
     started = time.monotonic()
@@ -165,7 +169,8 @@ def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, 
         return {"final_state": "FAILED", "failure_reason": f"no TaskReport within {timeout_s:g} s", "attempts": []}
     report = operator.report
     return {"final_state": report.final_state, "failure_reason": report.failure_reason,
-            "opening": report.opening, "autonomy": report.autonomy, "attempts": list(report.attempts)}
+            "opening": report.opening, "autonomy": report.autonomy, "attempts": list(report.attempts),
+            "clocks": report.clocks}
 
 
 def write_report(run_dir: Path, options: TaskOptions, report: dict) -> str:
@@ -175,7 +180,7 @@ def write_report(run_dir: Path, options: TaskOptions, report: dict) -> str:
     lines = [f"# Door task run {run_dir.name}", "", f"Final state: **{report['final_state']}**"
              + (f" — {report['failure_reason']}" if report.get("failure_reason") else ""), "",
              f"Wall time: {report.get('wall_time_s', 0):.1f} s; autonomy {options.autonomy}; backend {options.backend}",
-             "", table, "", "## State attempts", "", "| state | attempt | outcome | planning | moving | reason |",
+             "", table, "", f"Times: {report.get('clocks') or 'see docs/CLOCKS.md'}.", "", "## State attempts", "", "| state | attempt | outcome | planning | moving | reason |",
              "|---|---|---|---|---|---|"]
     for a in report["attempts"]:
         lines.append(f"| {a['state']} | {a['attempt']} | {a['outcome']} | {a['planning_s']:.3f} s | "

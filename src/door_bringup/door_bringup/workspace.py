@@ -19,8 +19,24 @@ class WorkspaceError(RuntimeError):
 
 
 def repository_root() -> Path:
-    """This checkout (src/door_bringup/door_bringup → three levels up), or $DOOR_WORKSPACE."""
-    return Path(os.environ.get("DOOR_WORKSPACE", Path(__file__).resolve().parents[3]))
+    """$DOOR_WORKSPACE, else the checkout this module is in — from the sources or from the
+    colcon install inside the checkout (``ros_ws/install/door_bringup/lib/…``)."""
+    if "DOOR_WORKSPACE" in os.environ:
+        return Path(os.environ["DOOR_WORKSPACE"])
+    return find_repository_root(Path(__file__))
+
+
+def find_repository_root(start: Path) -> Path:
+    """The nearest folder above ``start`` holding ``ros_ws/src`` and ``params/`` (the checkout).
+
+    A fixed number of levels up was right for the sources only: from the installed copy it
+    named ``ros_ws/install/door_bringup/lib`` (issue #12: ``door_graph --check`` failed).
+    """
+    for folder in start.resolve().parents:
+        if (folder / "ros_ws" / "src").is_dir() and (folder / "params").is_dir():
+            return folder
+    raise WorkspaceError(f"no checkout (a folder with ros_ws/src and params/) above {start}; "
+                         f"set DOOR_WORKSPACE")
 
 
 @dataclass(frozen=True)

@@ -26,7 +26,7 @@ def generate_launch_description() -> LaunchDescription:
         return Node(package=launch.package, executable=launch.executable, name=launch.node_name,
                     output="screen", emulate_tty=True,
                     parameters=[os.path.join(params, f"{launch.node_name}.yaml"),
-                                {"use_sim_time": launch.sim_time}],
+                                {"use_sim_time": launch.use_sim_time}],
                     additional_env={"DOOR_PARAMS_DIR": params}, **kwargs)
 
     return LaunchDescription([

@@ -8,9 +8,9 @@ topic the graph does not have), in the layout file format Foxglove and Lichtblic
 * the head camera with the door estimate and proposals drawn over it (3-D markers projected
   through the camera's calibration and /tf), and the detector's own overlay image;
 * the FSM's state and approval request;
-* buttons (Publish panels) for ``pause``, ``resume`` and ``abort``, and an editable Publish
-  panel for ``approve <id>`` / ``reject <id>`` / ``repeat <id>`` — the id is the ``#<id>`` of the
-  approval request;
+* buttons (Publish panels) for ``pause``, ``stop`` (all motion, at once), ``resume`` and
+  ``abort``, and an editable Publish panel for ``approve <id>`` / ``reject <id>`` /
+  ``repeat <id>`` — the id is the ``#<id>`` of the approval request;
 * the nodes' log lines.
 
     python -m door_viz.layout     # rewrites src/door_viz/layouts/door_task.json (a test compares)
@@ -26,7 +26,7 @@ from door_contract.frames import Frame
 from door_contract.topics import Topics
 
 LAYOUT_FILE = Path(__file__).resolve().parents[1] / "layouts" / "door_task.json"
-BUTTONS = (("pause", "#f5a623"), ("resume", "#4a90e2"), ("abort", "#d0021b"))
+BUTTONS = (("pause", "#f5a623"), ("stop", "#e8590c"), ("resume", "#4a90e2"), ("abort", "#d0021b"))
 SCENE_TOPICS = (Topics.ROBOT_DESCRIPTION, Topics.DOOR_MARKERS, Topics.PROPOSAL_MARKERS, Topics.FOOTSTEP_MARKERS)
 OVERLAY_TOPICS = (Topics.DOOR_MARKERS, Topics.PROPOSAL_MARKERS)
 
@@ -65,7 +65,8 @@ def panel_configs() -> dict[str, dict]:
 
 def mosaic() -> dict:
     """How the panels are arranged (Foxglove's split tree)."""
-    buttons = _split("row", "Publish!pause", _split("row", "Publish!resume", "Publish!abort", 50), 33)
+    buttons = _split("row", _split("row", "Publish!pause", "Publish!stop", 50),
+                     _split("row", "Publish!resume", "Publish!abort", 50), 50)
     operator = _split("column", "RawMessages!state",
                       _split("column", "RawMessages!approval",
                              _split("column", buttons, _split("column", "Publish!answer", "RosOut!log", 45), 15), 30),

@@ -6,8 +6,10 @@
 Subscribes with raw (serialized) callbacks, so messages are stored byte-identical; new
 topics are picked up while recording as soon as a publisher offers them (as ``ros2 bag record``
 does), each with the QoS its publishers offer (stored in the bag, so a player restores
-transient-local topics; :mod:`door_bringup.bags.qos`). Ctrl-C /
-SIGTERM closes the bag cleanly.
+transient-local topics; :mod:`door_bringup.bags.qos`). Ctrl-C / SIGTERM closes the bag
+cleanly. An output that exists or cannot be created ends with one line and exit code 7
+(:mod:`door_bringup.bags.exit_codes`); ``--compression zstd`` without ``--storage mcap`` is a
+usage error (2).
 """
 
 from __future__ import annotations
@@ -19,8 +21,9 @@ from pathlib import Path
 from rclpy.node import Node
 
 from door_bringup.bags.player import qos_for
+from door_bringup.bags.exit_codes import exit_code_for
 from door_bringup.bags.qos import offered_qos
-from door_bringup.bags.storage import BagWriter, Compression, StorageFormat
+from door_bringup.bags.storage import BagError, BagWriter, Compression, StorageFormat
 from door_contract.converters.diagnostics import Health
 from door_contract.node_support import Heartbeat, run_node
 from door_contract.qos import matching_subscription
@@ -28,10 +31,10 @@ from door_contract.topics import interface_class
 
 
 class BagRecorder(Node):
-    def __init__(self, output: Path, storage: StorageFormat, topics: tuple[str, ...] | None,
-                 compression: Compression = Compression.NONE) -> None:
+    def __init__(self, writer: BagWriter, output: Path, storage: StorageFormat,
+                 topics: tuple[str, ...] | None) -> None:
         super().__init__("bag_recorder")
-        self.writer = BagWriter(output, storage, compression)
+        self.writer = writer
         self.wanted = set(topics) if topics else None
         self.subscriptions_by_topic = {}
         self.count = 0
@@ -79,9 +82,13 @@ def main(argv: list[str] | None = None) -> int:
     args, ros_args = parser.parse_known_args(argv)
     if args.compression != "none" and args.storage != "mcap":
         parser.error("--compression zstd needs --storage mcap")
-    return run_node(lambda: BagRecorder(args.output, StorageFormat(args.storage),
-                                        tuple(args.topics) if args.topics else None,
-                                        Compression(args.compression)), ros_args)
+    try:  # created before the node, so a bad output is one line and exit code 7, not a traceback
+        writer = BagWriter(args.output, StorageFormat(args.storage), Compression(args.compression))
+    except BagError as error:
+        print(f"bag_record: {error}", file=sys.stderr)
+        return exit_code_for(error)
+    return run_node(lambda: BagRecorder(writer, args.output, StorageFormat(args.storage),
+                                        tuple(args.topics) if args.topics else None), ros_args)
 
 
 if __name__ == "__main__":

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import yaml
 from rosbags.interfaces import Qos
-from rosbags.rosbag2 import StoragePlugin, Writer
+from rosbags.rosbag2 import ReaderError, StoragePlugin, Writer, WriterError
 from rosbags.rosbag2.enums import CompressionFormat, CompressionMode
 from rosbags.rosbag2.metadata import parse_qos
 from rosbags.rosbag2.storage_mcap import McapReader
@@ -32,6 +32,22 @@ ROS_DISTRO = "jazzy"
 
 class BagError(RuntimeError):
     """A bag that cannot be read or written: missing files, unknown storage."""
+
+
+class BagNotFoundError(BagError):
+    """Nothing at the path is a bag (no metadata.yaml, no .db3/.mcap file)."""
+
+
+class BagMetadataError(BagError):
+    """metadata.yaml is not YAML, lacks keys, or names files that are missing or unknown."""
+
+
+class BagStorageError(BagError):
+    """A storage file is truncated or corrupt (sqlite: malformed image; mcap: bad records)."""
+
+
+class BagWriteError(BagError):
+    """A bag cannot be created: the output exists, or its folder cannot be written."""
 
 
 class StorageFormat(str, Enum):
@@ -62,18 +78,28 @@ class BagTopic:
 def _bag_information(bag: Path) -> dict:
     metadata = bag / "metadata.yaml"
     if not metadata.is_file():
-        raise BagError(f"{bag} is neither a bag folder with metadata.yaml nor a .db3/.mcap file")
-    return yaml.safe_load(metadata.read_text())["rosbag2_bagfile_information"]
+        raise BagNotFoundError(f"{bag} is neither a bag folder with metadata.yaml nor a .db3/.mcap file")
+    try:
+        return dict(yaml.safe_load(metadata.read_text())["rosbag2_bagfile_information"])
+    except yaml.YAMLError as error:
+        raise BagMetadataError(f"{metadata} is not YAML ({str(error).splitlines()[0]})") from None
+    except (KeyError, TypeError, ValueError) as error:
+        raise BagMetadataError(f"{metadata} lacks rosbag2_bagfile_information "
+                               f"({type(error).__name__}: {error})") from None
 
 
 def _storage_files(bag: Path) -> list[Path]:
     if bag.is_file():
         return [bag]
     info = _bag_information(bag)
-    files = [bag / name for name in info["relative_file_paths"]]
+    try:
+        files = [bag / str(name) for name in info["relative_file_paths"]]
+    except (KeyError, TypeError) as error:
+        raise BagMetadataError(f"{bag / 'metadata.yaml'} lacks rosbag2_bagfile_information.relative_file_paths "
+                               f"({type(error).__name__}: {error})") from None
     for path in files:
         if not path.is_file():
-            raise BagError(f"{bag}: storage file {path.name} listed in metadata.yaml is missing")
+            raise BagMetadataError(f"{bag}: storage file {path.name} listed in metadata.yaml is missing")
     return files
 
 
@@ -81,8 +107,12 @@ def recorded_qos(bag: Path | str) -> dict[str, list[Qos]]:
     """Each topic's offered QoS profiles from ``metadata.yaml`` (both the YAML-string form of
     metadata ≤ 8 and the list of version 9); topics recorded without any map to []."""
     topics = _bag_information(Path(bag)).get("topics_with_message_count") or []
-    return {entry["topic_metadata"]["name"]: parse_qos(entry["topic_metadata"].get("offered_qos_profiles") or [])
-            for entry in topics}
+    try:
+        return {entry["topic_metadata"]["name"]: parse_qos(entry["topic_metadata"].get("offered_qos_profiles") or [])
+                for entry in topics}
+    except (KeyError, TypeError, ValueError, AttributeError, ReaderError) as error:
+        raise BagMetadataError(f"{bag}/metadata.yaml: unreadable topics_with_message_count "
+                               f"({type(error).__name__}: {(str(error).splitlines() or [''])[0]})") from None
 
 
 def _sqlite_messages(path: Path, topics: set[str] | None) -> Iterator[BagMessage]:
@@ -98,19 +128,25 @@ def _sqlite_messages(path: Path, topics: set[str] | None) -> Iterator[BagMessage
             f"JOIN topics ON messages.topic_id = topics.id {where}ORDER BY messages.timestamp, messages.id", names)
         for name, type_name, timestamp, data in rows:
             yield BagMessage(name, type_name, int(timestamp), bytes(data))
+    except sqlite3.Error as error:
+        raise BagStorageError(f"{path.name} is not a readable rosbag2 sqlite3 file ({error})") from None
     finally:
         connection.close()
 
 
 def _mcap_messages(path: Path, topics: set[str] | None) -> Iterator[BagMessage]:
-    reader = McapReader(path)
-    reader.open()
+    reader, opened = McapReader(path), False
     try:
+        reader.open()
+        opened = True
         connections = [c for c in reader.connections if topics is None or c.topic in topics]
         for connection, timestamp, data in reader.messages(connections) if connections else ():
             yield BagMessage(connection.topic, connection.msgtype, int(timestamp), bytes(data))
+    except Exception as error:  # rosbags raises ReaderError, struct and Unicode errors on bad records
+        raise BagStorageError(f"{path.name} is not a readable mcap file ({type(error).__name__}: {error})") from None
     finally:
-        reader.close()
+        if opened:
+            reader.close()
 
 
 def read_messages(bag: Path | str, topics: Iterable[str] | None = None) -> Iterator[BagMessage]:
@@ -123,7 +159,7 @@ def read_messages(bag: Path | str, topics: Iterable[str] | None = None) -> Itera
         elif path.suffix == ".mcap":
             streams.append(_mcap_messages(path, wanted))
         else:
-            raise BagError(f"unknown storage file {path.name} (expected .db3 or .mcap)")
+            raise BagMetadataError(f"unknown storage file {path.name} (expected .db3 or .mcap)")
     for message in heapq.merge(*streams, key=lambda m: m.timestamp_ns):
         if wanted is None or message.topic in wanted:
             yield message
@@ -144,14 +180,19 @@ class BagWriter:
                  compression: Compression = Compression.NONE) -> None:
         plugin = StoragePlugin.SQLITE3 if storage is StorageFormat.SQLITE3 else StoragePlugin.MCAP
         self.path = Path(path)
+        if self.path.exists():
+            raise BagWriteError(f"{path} exists already: choose a new output folder")
+        if compression is Compression.ZSTD and storage is not StorageFormat.MCAP:
+            raise BagWriteError("zstd compression is for mcap bags (compressed chunks); use --storage mcap")
         self._writer = Writer(self.path, version=9, storage_plugin=plugin)
         if compression is Compression.ZSTD:
-            if storage is not StorageFormat.MCAP:
-                raise BagError("zstd compression is for mcap bags (compressed chunks); use --storage mcap")
             self._writer.set_compression(CompressionMode.STORAGE, CompressionFormat.ZSTD)
         self._typestore = get_typestore(Stores.ROS2_JAZZY)
         self._connections: dict[str, object] = {}
-        self._writer.open()
+        try:
+            self._writer.open()
+        except (OSError, WriterError) as error:
+            raise BagWriteError(f"cannot create {path} ({error})") from None
         self._say_jazzy_in_storage_metadata()
 
     def _say_jazzy_in_storage_metadata(self) -> None:
@@ -164,7 +205,7 @@ class BagWriter:
     def add_topic(self, topic: str, type_name: str, offered_qos: Iterable[Qos] = ()) -> None:
         """Declare ``topic`` with the QoS profiles its publishers offer (before its first message)."""
         if topic in self._connections:
-            raise BagError(f"topic {topic} is already in the bag")
+            raise BagWriteError(f"topic {topic} is already in the bag")
         kwargs = {"typestore": self._typestore} if type_name in self._typestore.fielddefs else {
             "msgdef": "", "rihs01": ""}
         self._connections[topic] = self._writer.add_connection(
