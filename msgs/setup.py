@@ -11,6 +11,8 @@ setup(
     data_files=[
         ("share/ament_index/resource_index/packages", [f"resource/{PACKAGE}"]),
         (f"share/{PACKAGE}", ["package.xml"]),
+        # colcon hook (listed in colcon.pkg): DDS discovery stays on this machine by default
+        (f"share/{PACKAGE}/hook", ["hook/discovery_range.dsv", "hook/discovery_range.sh"]),
     ],
     install_requires=["setuptools"],
     zip_safe=True,

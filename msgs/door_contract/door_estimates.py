@@ -2,9 +2,45 @@
 
 from __future__ import annotations
 
+import math
 from collections import OrderedDict
 
 from door_contract.payloads import DoorEstimate, decode
+from door_contract.ranges import FieldRange
+
+DOOR_WIDTH_RANGE = FieldRange(0.3, 2.5, "m")
+"""Door widths a planner accepts (the detector's width parameters stay inside it)."""
+
+DOOR_ANGLE_RANGE = FieldRange(-0.1, 2.0, "rad")
+"""Hinge angles a request may carry: closed (0) to beyond a right angle, with 0.1 rad of slack
+below for a door resting on its stop (the footstep planner's passage angle tops at 2.0)."""
+
+
+def door_estimate_problem(estimate: DoorEstimate) -> str | None:
+    """Why a (finite, decoded) estimate cannot be planned with, or None.
+
+    The normal must be a direction (|n| ≈ 1, to 10 %) and mostly horizontal (a door is a
+    vertical plane: |n_z| ≤ 0.5); a zero normal made the optimiser's outcome NaN (issue #12).
+    """
+    norm = math.sqrt(sum(v * v for v in estimate.normal))
+    if not 0.9 <= norm <= 1.1:
+        return f"door normal {estimate.normal} is not a unit vector (|n| = {norm:.3g})"
+    if abs(estimate.normal[2]) > 0.5 * norm:
+        return f"door normal {estimate.normal} is not horizontal: a door is a vertical plane"
+    if not DOOR_WIDTH_RANGE.admits(estimate.width):
+        return f"door width {estimate.width:g} m is outside {DOOR_WIDTH_RANGE.describe()}"
+    if estimate.corners and (len(estimate.corners) != 4 or any(len(c) != 3 for c in estimate.corners)):
+        return "door corners must be four (x, y, z) points"
+    if not 0.0 <= estimate.confidence <= 1.0:
+        return f"door confidence {estimate.confidence:g} is outside [0, 1]"
+    return None
+
+
+def door_angle_problem(angle: float) -> str | None:
+    """Why a requested hinge angle is refused, or None (the optimiser spent 80 s on 1e6 rad)."""
+    if DOOR_ANGLE_RANGE.admits(angle):
+        return None
+    return f"door_angle {angle:g} rad is outside {DOOR_ANGLE_RANGE.describe()}"
 
 
 class DoorEstimateHistory:

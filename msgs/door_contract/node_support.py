@@ -5,9 +5,11 @@ This is the only module of the contract that imports rclpy at module level.
 
 from __future__ import annotations
 
+import difflib
 import faulthandler
 import signal
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager
 
 import rclpy
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
@@ -18,6 +20,7 @@ from rclpy.signals import SignalHandlerOptions
 
 from door_contract.converters.diagnostics import Health, diagnostic_array
 from door_contract.errors import ParameterRangeError
+from door_contract.network import keep_discovery_local
 from door_contract.parameters import ParameterSpec, ParameterValue
 from door_contract.topics import TopicSpec, Topics
 
@@ -60,6 +63,35 @@ def declare_parameters(node: Node, specs: Iterable[ParameterSpec]) -> dict[str, 
     return values
 
 
+def report_undeclared_parameters(node: Node) -> list[str]:
+    """Warn about overrides (``-p``, ``--params-file``) that name no declared parameter.
+
+    rclpy ignores them silently, so a typo (``vote_frame:=5``) would change nothing unseen.
+    Returns the names reported.
+    """
+    overrides = getattr(node, "_parameter_overrides", {})  # rclpy keeps them only privately
+    declared = {name for name in overrides if node.has_parameter(name)}
+    unknown = sorted(set(overrides) - declared)
+    for name in unknown:
+        known = sorted(node._parameters) if hasattr(node, "_parameters") else []
+        close = difflib.get_close_matches(name, known, n=1)
+        hint = f"; did you mean '{close[0]}'?" if close else ""
+        node.get_logger().warning(f"parameter '{name}' is not a parameter of /{node.get_name()} "
+                                  f"and is ignored{hint}")
+    return unknown
+
+
+@contextmanager
+def as_parameter_error(what: str, *errors: type[Exception]) -> Iterator[None]:
+    """Turn a core's refusal of the node's configuration (``errors``) into
+    :class:`ParameterRangeError`, which :func:`run_node` reports as one line and exit code 2
+    (an unknown robot profile or an inverted range used to exit 1 with a traceback)."""
+    try:
+        yield
+    except errors as error:
+        raise ParameterRangeError(f"{what}: {error}") from None
+
+
 SLOW_SHUTDOWN_S = 3.0
 """Seconds after which a node's clean shutdown is reported as slow (with its stacks)."""
 
@@ -91,7 +123,10 @@ def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
     """The canonical rclpy main: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
 
     Returns the process exit code: 0 after a clean shutdown, 2 when a parameter is invalid.
+    DDS discovery stays on this machine unless the environment says otherwise
+    (:func:`~door_contract.network.keep_discovery_local`).
     """
+    keep_discovery_local()
     rclpy.init(args=args, signal_handler_options=SignalHandlerOptions.NO)
     stop = StopRequest()
     previous = {sig: signal.signal(sig, stop) for sig in (signal.SIGINT, signal.SIGTERM)}
@@ -99,6 +134,7 @@ def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
     node = None
     try:
         node = node_factory()
+        report_undeclared_parameters(node)
         executor.add_node(node)
         while not stop.requested and rclpy.ok():
             executor.spin_once(timeout_sec=poll_period_s)

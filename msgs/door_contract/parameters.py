@@ -78,6 +78,13 @@ class ParameterSpec:
             f"parameter '{self.name}' = {value!r} is invalid: expected {self.allowed()}")
 
 
+def require_ordered(values: Mapping[str, Any], low: str, high: str) -> None:
+    """:class:`ParameterRangeError` unless ``values[low] <= values[high]`` (a range's two ends)."""
+    if values[low] > values[high]:
+        raise ParameterRangeError(f"parameters '{low}' = {values[low]!r} and '{high}' = {values[high]!r} "
+                                  f"are invalid: '{low}' must not exceed '{high}'")
+
+
 def validate_all(specs: Iterable[ParameterSpec], values: Mapping[str, Any]) -> dict[str, ParameterValue]:
     """Validate ``values`` (missing ones take defaults); unknown names are an error too."""
     by_name = {spec.name: spec for spec in specs}

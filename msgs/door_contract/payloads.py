@@ -14,6 +14,7 @@ from enum import Enum
 from typing import Any, TypeVar, get_type_hints
 
 from door_contract.errors import ContractError, NonFiniteError
+from door_contract.json_text import parse_bounded
 
 Payload = TypeVar("Payload")
 
@@ -22,6 +23,9 @@ class OutcomeStatus(str, Enum):
     SUCCESS = "success"
     FAILURE = "failure"
     REJECTED = "rejected"  # refused before doing anything (bad input); nothing moved
+    SUPERSEDED = "superseded"  # planning only: a newer request or a cancel replaced it; nothing proposed
+    STOPPED = "stopped"  # execution only: stopped on command (empty message, lost supervisor); the robot holds
+    FELL = "fell"  # execution only: the robot fell; it stays down, the task cannot go on
 
 
 class ExecutionKind(str, Enum):
@@ -107,6 +111,7 @@ class FootstepRequest:
     door_angle: float = 0.0
     door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
     door: str = ""  # the approved DoorEstimate itself (JSON), so a late-joining planner has it
+    attempt: int = 0  # 0 first try, +1 per repeat of the FSM state: a repeat searches with a larger budget
 
 
 @dataclasses.dataclass(frozen=True)
@@ -120,6 +125,16 @@ class MotionRequest:
     door_angle: float = 0.0
     door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
     door: str = ""  # the approved DoorEstimate itself (JSON), so a late-joining planner has it
+    attempt: int = 0  # 0 first try, +1 per repeat of the FSM state: a repeat may use other guesses
+
+
+@dataclasses.dataclass(frozen=True)
+class PlanningCancel:
+    """``/<planner>/cancel``: drop request ``request_id`` (queued or running); it is answered
+    SUPERSEDED and its result, if any, is never proposed."""
+
+    request_id: int
+    reason: str = ""
 
 
 @dataclasses.dataclass(frozen=True)
@@ -144,11 +159,27 @@ class TaskReport:
     opening: str
     autonomy: str
     attempts: tuple[dict, ...]  # StateAttempt fields
+    clocks: str = ""  # which clock each time is measured on (docs/CLOCKS.md)
 
 
 def encode(payload: Any) -> str:
     """JSON text of a payload dataclass (Enums by value)."""
     return json.dumps(dataclasses.asdict(payload), default=_enum_value, allow_nan=False)
+
+
+def without_non_finite(value: Any) -> Any:
+    """``value`` with every NaN or infinity (in nested dicts, lists, tuples) replaced by None.
+
+    A failure's figures (the cost of a diverged plan) may be NaN; the outcome must still go
+    out (``encode`` refuses NaN, which once killed the optimiser: issue #12).
+    """
+    if isinstance(value, float):
+        return value if math.isfinite(value) else None
+    if isinstance(value, dict):
+        return {k: without_non_finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [without_non_finite(v) for v in value]
+    return value
 
 
 def _enum_value(value: Any) -> Any:
@@ -158,11 +189,9 @@ def _enum_value(value: Any) -> Any:
 
 
 def decode(payload_type: type[Payload], text: str) -> Payload:
-    """A ``payload_type`` instance from JSON, or :class:`ContractError` saying what is wrong."""
-    try:
-        document = json.loads(text)
-    except json.JSONDecodeError as error:
-        raise ContractError(f"{payload_type.__name__}: not JSON ({error})") from None
+    """A ``payload_type`` instance from JSON, or :class:`ContractError` saying what is wrong
+    (size and nesting are bounded before parsing: :func:`~door_contract.json_text.parse_bounded`)."""
+    document = parse_bounded(payload_type.__name__, text)
     if not isinstance(document, dict):
         raise ContractError(f"{payload_type.__name__}: expected a JSON object")
     hints = get_type_hints(payload_type)

@@ -19,3 +19,24 @@ def from_time_msg(stamp: Time) -> Stamp:
 def stamp_ns(stamp: Time) -> int:
     """A stamp as integer nanoseconds: how an executed message and its outcome are matched."""
     return stamp.sec * 1_000_000_000 + stamp.nanosec
+
+
+class UniqueStamps:
+    """Stamps (ns) that strictly increase, for messages matched to their answer by stamp.
+
+    Under ``use_sim_time`` the clock advances in /clock steps (10 ms) and reads 0 before the
+    first one, so two messages sent in one step would share a stamp; each stamp here is at
+    least 1 ns after the previous one.
+    """
+
+    def __init__(self) -> None:
+        self._last = -1
+
+    def next(self, now_ns: int) -> int:
+        self._last = max(int(now_ns), self._last + 1)
+        return self._last
+
+
+def time_msg_of_ns(stamp: int) -> Time:
+    """Integer nanoseconds as ``builtin_interfaces/Time`` (inverse of :func:`stamp_ns`)."""
+    return Time(sec=stamp // 1_000_000_000, nanosec=stamp % 1_000_000_000)

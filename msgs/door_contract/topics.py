@@ -12,7 +12,7 @@ import importlib
 from dataclasses import dataclass
 
 from door_contract.frames import Frame
-from door_contract.qos import CLOCK, EVENTS, LATCHED, SENSOR, QosSpec
+from door_contract.qos import CLOCK, EVENTS, LATCHED, REQUESTS, SENSOR, SERVICE, TF_STREAM, QosSpec
 
 
 @dataclass(frozen=True)
@@ -34,12 +34,17 @@ class TopicSpec:
 
 @dataclass(frozen=True)
 class ServiceSpec:
-    """One service of the contract."""
+    """One service of the contract.
+
+    ``qos``: the request and response queues. rclpy's default keeps 10, so a burst of 100
+    calls got 20 answers (issue #12); the contract's services queue deeply.
+    """
 
     name: str
     type_name: str  # e.g. "std_srvs/srv/SetBool"
     server: str
     meaning: str
+    qos: QosSpec = SERVICE
 
     def srv_class(self) -> type:
         return interface_class(self.type_name)
@@ -70,22 +75,33 @@ class Topics:
     DEPTH_INFO = TopicSpec("/head_camera/depth/camera_info", "sensor_msgs/msg/CameraInfo", SENSOR,
                            "sim_bridge", "depth intrinsics", frame=Frame.HEAD_CAMERA_OPTICAL.value)
     FOOT_POSES = TopicSpec("/feet", "nav_msgs/msg/Path", SENSOR, "sim_bridge",
-                           "where the soles stand: poses[0] left, poses[1] right (tf2 is not on PyPI)",
+                           "where the soles stand: poses[0] left, poses[1] right (also on /tf)",
                            frame=Frame.ODOM.value, unit="m")
     CAMERA_POSE = TopicSpec("/head_camera/pose", "geometry_msgs/msg/PoseStamped", SENSOR, "sim_bridge",
-                            "head camera optical frame in odom, stamped like its images (tf2 is not "
-                            "on PyPI)", frame=Frame.ODOM.value, unit="m")
+                            "head camera optical frame in odom, stamped like its images (also on /tf)",
+                            frame=Frame.ODOM.value, unit="m")
+    TF = TopicSpec("/tf", "tf2_msgs/msg/TFMessage", TF_STREAM, "sim_bridge",
+                   "odom → base_link and every moving joint of the robot, stamped with sim time",
+                   frame=Frame.ODOM.value, unit="m")
+    TF_STATIC = TopicSpec("/tf_static", "tf2_msgs/msg/TFMessage", LATCHED, "sim_bridge",
+                          "the URDF's fixed joints and the head camera's optical frame (transient local)",
+                          unit="m")
+    ROBOT_DESCRIPTION = TopicSpec("/robot_description", "std_msgs/msg/String", LATCHED, "sim_bridge",
+                                  "URDF the sim loaded, meshes as package:// (or file://) URIs "
+                                  "(transient local)")
     DOOR_JOINT_STATES = TopicSpec("/sim/door_joint_states", "sensor_msgs/msg/JointState", SENSOR,
                                   "sim_bridge", "ground-truth hinge and handle angles "
                                   "(evaluation only)", unit="rad")
-    EXECUTION_OUTCOME = TopicSpec("/sim/execution_outcome", "std_msgs/msg/String", EVENTS,
+    EXECUTION_OUTCOME = TopicSpec("/sim/execution_outcome", "std_msgs/msg/String", REQUESTS,
                                   "sim_bridge", "JSON ExecutionOutcome when a trajectory or "
                                   "footstep plan finishes or is rejected")
     ARM_TRAJECTORY = TopicSpec("/arm_controller/joint_trajectory",
                                "trajectory_msgs/msg/JointTrajectory", EVENTS, "fsm_supervisor",
-                               "approved trajectory to execute", unit="rad, s")
+                               "approved trajectory to execute; one without points stops the arm and "
+                               "holds (ros2_control)", unit="rad, s")
     FOOTSTEP_PLAN = TopicSpec("/footstep_plan", "nav_msgs/msg/Path", EVENTS, "fsm_supervisor",
-                              "approved footsteps to walk (even index = left foot, odd = right)",
+                              "approved footsteps to walk (even index = left foot, odd = right); an "
+                              "empty path stops at the next stable stance",
                               frame=Frame.ODOM.value, unit="m")
     HANDLE_POSE = TopicSpec("/door/handle_pose", "geometry_msgs/msg/PoseStamped", EVENTS,
                             "door_detector", "handle grasp point; x = door normal towards the "
@@ -102,24 +118,34 @@ class Topics:
     SCRIBBLE = TopicSpec("/operator/scribble", "geometry_msgs/msg/PolygonStamped", EVENTS,
                          "operator", "pixel polygon on the handle: operator-aided detection",
                          unit="px")
-    FOOTSTEP_REQUEST = TopicSpec("/footstep_planner/request", "std_msgs/msg/String", EVENTS,
+    FOOTSTEP_REQUEST = TopicSpec("/footstep_planner/request", "std_msgs/msg/String", REQUESTS,
                                  "fsm_supervisor", "JSON FootstepRequest (id, goal)")
+    FOOTSTEP_CANCEL = TopicSpec("/footstep_planner/cancel", "std_msgs/msg/String", REQUESTS,
+                                "fsm_supervisor", "JSON PlanningCancel: drop a request (answered "
+                                "superseded)")
     FOOTSTEP_PROPOSAL = TopicSpec("/footstep_planner/plan", "nav_msgs/msg/Path", EVENTS,
                                   "footstep_planner", "planned footsteps awaiting approval",
                                   frame=Frame.ODOM.value, unit="m")
-    FOOTSTEP_OUTCOME = TopicSpec("/footstep_planner/outcome", "std_msgs/msg/String", EVENTS,
+    FOOTSTEP_OUTCOME = TopicSpec("/footstep_planner/outcome", "std_msgs/msg/String", REQUESTS,
                                  "footstep_planner", "JSON PlanningOutcome for a request id")
     FOOTSTEP_MARKERS = TopicSpec("/footstep_planner/markers", "visualization_msgs/msg/MarkerArray",
                                  EVENTS, "footstep_planner", "footprints for RViz/Foxglove",
                                  frame=Frame.ODOM.value)
-    MOTION_REQUEST = TopicSpec("/trajectory_optimizer/request", "std_msgs/msg/String", EVENTS,
+    MOTION_REQUEST = TopicSpec("/trajectory_optimizer/request", "std_msgs/msg/String", REQUESTS,
                                "fsm_supervisor", "JSON MotionRequest (id, motion, backend)")
+    MOTION_CANCEL = TopicSpec("/trajectory_optimizer/cancel", "std_msgs/msg/String", REQUESTS,
+                              "fsm_supervisor", "JSON PlanningCancel: drop a request (answered "
+                              "superseded)")
     MOTION_PROPOSAL = TopicSpec("/trajectory_optimizer/trajectory",
                                 "trajectory_msgs/msg/JointTrajectory", EVENTS,
                                 "trajectory_optimizer", "optimised trajectory awaiting approval",
                                 unit="rad, s")
-    MOTION_OUTCOME = TopicSpec("/trajectory_optimizer/outcome", "std_msgs/msg/String", EVENTS,
+    MOTION_OUTCOME = TopicSpec("/trajectory_optimizer/outcome", "std_msgs/msg/String", REQUESTS,
                                "trajectory_optimizer", "JSON PlanningOutcome for a request id")
+    PROPOSAL_MARKERS = TopicSpec("/door_task/proposal_markers", "visualization_msgs/msg/MarkerArray",
+                                 LATCHED, "proposal_markers", "what the FSM is offered: footsteps, the "
+                                 "hand's path of each trajectory, the door and its swing (transient local)",
+                                 frame=Frame.ODOM.value)
     TASK_STATE = TopicSpec("/door_task/state", "std_msgs/msg/String", LATCHED, "fsm_supervisor",
                            "current FSM state")
     APPROVAL_REQUEST = TopicSpec("/door_task/approval_request", "std_msgs/msg/String", LATCHED,
@@ -127,8 +153,9 @@ class Topics:
     TASK_REPORT = TopicSpec("/door_task/report", "std_msgs/msg/String", LATCHED, "fsm_supervisor",
                             "JSON TaskReport when the task ends: every state attempt with its "
                             "outcome, planning, waiting and moving time", unit="s")
-    OPERATOR = TopicSpec("/door_task/operator", "std_msgs/msg/String", EVENTS, "operator",
-                         "approve, reject, repeat, pause, resume, abort, manual")
+    OPERATOR = TopicSpec("/door_task/operator", "std_msgs/msg/String", REQUESTS, "operator",
+                         "approve N, reject N, repeat N (N = the request id); pause, stop, resume, "
+                         "abort, manual")
     DIAGNOSTICS = TopicSpec("/diagnostics", "diagnostic_msgs/msg/DiagnosticArray", EVENTS, "all",
                             "health, timings, outcomes")
 

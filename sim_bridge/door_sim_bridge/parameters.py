@@ -12,6 +12,9 @@ BRIDGE_PARAMETERS = (
     ParameterSpec("real_time", False, "pace the simulation to the wall clock (false: as fast as possible)"),
     ParameterSpec("state_rate", 50.0, "/joint_states, /odom and /sim/door_joint_states rate (sim time)",
                   unit="Hz", minimum=1.0, maximum=500.0),
+    ParameterSpec("tf_rate", 20.0, "/tf rate (sim time); 0: no /tf", unit="Hz", minimum=0.0, maximum=500.0),
+    ParameterSpec("mesh_uris", "package", "how /robot_description names meshes: package:// (Foxglove via "
+                  "the bridge, RViz via the ament index) or file:// (this machine)", choices=("package", "file")),
     ParameterSpec("clock_rate", 100.0, "/clock rate (sim time)", unit="Hz", minimum=1.0, maximum=1000.0),
     ParameterSpec("camera_rate", 2.0, "head camera frame rate (sim time); 0 disables the camera", unit="Hz",
                   minimum=0.0, maximum=30.0),
@@ -33,6 +36,10 @@ BRIDGE_PARAMETERS = (
                   minimum=0.5, maximum=6.0),
     ParameterSpec("stance_lateral", 0.0, "robot lateral offset from the doorway centre", unit="m",
                   minimum=-2.0, maximum=2.0),
+    ParameterSpec("supervisor_timeout", 3.0, "stop every execution when the supervisor's heartbeat "
+                  "(/diagnostics, 1 Hz) is gone this long, wall clock; 0 disables the dead-man", unit="s",
+                  minimum=0.0, maximum=600.0),
+    ParameterSpec("supervisor_node", "fsm_supervisor", "node whose heartbeat the dead-man watches"),
     ParameterSpec("stance_yaw", 0.0, "robot yaw relative to facing the door", unit="rad",
                   minimum=-1.0, maximum=1.0),
     ParameterSpec("door_colour", (0.55, 0.33, 0.17), "door leaf colour, RGB in [0, 1]"),

@@ -3,9 +3,13 @@
 Steps the :class:`~door_sim_bridge.world.DoorWorld` from a timer (as fast as possible, or
 paced to the wall clock), publishes /clock, joint states, odometry, the head camera and the
 door's ground truth at their rates (simulated time), executes joint trajectories and
-footstep plans one at a time, and serves the hands' grasp services. Every execution ends
-with an ExecutionOutcome on /sim/execution_outcome whose request id is the stamp (ns) of
-the executed message; bad input is rejected there with its reason and moves nothing.
+footstep plans one at a time, and serves the hands' grasp services (every call answered).
+Every execution ends with an ExecutionOutcome on /sim/execution_outcome whose request id is
+the stamp (ns) of the executed message; bad input is rejected there with its reason and
+moves nothing. Stopping (ros2_control's convention): a JointTrajectory without points holds
+the arm where it is, an empty footstep Path ends the walk at the next stable stance; the
+dead-man (:mod:`door_sim_bridge.deadman`) does the same when the supervisor falls silent.
+Each stopped execution reports STOPPED with the reason.
 """
 
 from __future__ import annotations
@@ -26,17 +30,21 @@ from door_contract.converters.image import array_to_image
 from door_contract.converters.joint_state import positions_to_joint_state
 from door_contract.converters.pose import matrix_to_pose, matrix_to_pose_stamped
 from door_contract.converters.trajectory import msg_to_joint_path
-from door_contract.errors import ContractError, ParameterRangeError
+from door_contract.errors import ContractError
 from door_contract.frames import Frame
-from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
-                                        declare_parameters, run_node)
+from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
+                                        create_contract_subscription, declare_parameters, run_node)
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, encode
 from door_contract.stamps import stamp_ns, to_time_msg
 from door_contract.topics import Services, Topics
+from door_robot.meshes import MeshUris
 from door_robot.profile import Side
+from door_robot.errors import RobotModelError
+from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS, NODE_NAME
+from door_sim_bridge.robot_state_publication import RobotStatePublication
 from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, DoorWorld, HingeSide, StanceConfig,
                                    WindConfig, WorldConfig)
 from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT
@@ -84,17 +92,17 @@ class SimBridgeNode(Node):
         super().__init__(NODE_NAME)
         p = declare_parameters(self, BRIDGE_PARAMETERS)
         self.parameters = p
-        try:
+        with as_parameter_error("simulation", SimulationError, RobotModelError):
             self.world = DoorWorld(world_config(p))
-        except SimulationError as error:
-            raise ParameterRangeError(f"simulation: {error}") from None
+        self.deadman = DeadMan(p["supervisor_timeout"], p["supervisor_node"])
         self.schedules = {"clock": Schedule(p["clock_rate"]), "state": Schedule(p["state_rate"]),
-                          "camera": Schedule(p["camera_rate"])}
+                          "camera": Schedule(p["camera_rate"]), "tf": Schedule(p["tf_rate"])}
         self.execution: tuple[TrajectoryExecution | FootstepExecution, ExecutionKind, int] | None = None
         self.previous_base: tuple[float, np.ndarray] | None = None
         self.wall_start = time.monotonic()
         self.heartbeat = Heartbeat(self)
         self._make_interfaces()
+        self.robot_state = RobotStatePublication(self, self.world, MeshUris(p["mesh_uris"]), self.world.time)
         self.create_timer(0.0 if not p["real_time"] else 1.0 / p["physics_rate"] * STEPS_PER_TICK, self._tick)
         self.get_logger().info(f"ready: {p['robot_profile']}, {p['door_opening']} door hinged {p['hinge_side']}, "
                                f"{p['physics_rate']:.0f} Hz physics, {'real time' if p['real_time'] else 'as fast as possible'}")
@@ -106,11 +114,16 @@ class SimBridgeNode(Node):
             "CAMERA_POSE", "DOOR_JOINT_STATES", "EXECUTION_OUTCOME", "FOOT_POSES")}
         create_contract_subscription(self, Topics.ARM_TRAJECTORY, self._on_trajectory)
         create_contract_subscription(self, Topics.FOOTSTEP_PLAN, self._on_footsteps)
+        create_contract_subscription(self, Topics.DIAGNOSTICS, self._on_diagnostics)
         for side, spec in ((Side.LEFT, Services.LEFT_GRASP), (Side.RIGHT, Services.RIGHT_GRASP)):
-            self.create_service(SetBool, spec.name, lambda request, response, s=side: self._on_grasp(s, request, response))
+            self.create_service(SetBool, spec.name, lambda request, response, s=side: self._on_grasp(s, request, response),
+                                qos_profile=spec.qos.to_profile())
 
     # ------------------------------------------------------------------ commands
     def _on_trajectory(self, msg: JointTrajectory) -> None:
+        if not msg.points:
+            self._stop(ExecutionKind.TRAJECTORY, "a JointTrajectory without points (stop and hold)")
+            return
         request_id = stamp_ns(msg.header.stamp)
         try:
             path = msg_to_joint_path(msg)
@@ -120,6 +133,9 @@ class SimBridgeNode(Node):
         self._start(TrajectoryExecution.from_joint_path(self.world, path), ExecutionKind.TRAJECTORY, request_id)
 
     def _on_footsteps(self, msg: Path) -> None:
+        if not msg.poses:
+            self._stop(ExecutionKind.FOOTSTEPS, "an empty footstep plan (stop at the next stable stance)")
+            return
         request_id = stamp_ns(msg.header.stamp)
         try:
             steps = path_to_footsteps(msg)
@@ -128,7 +144,24 @@ class SimBridgeNode(Node):
             return
         self._start(FootstepExecution(self.world, steps), ExecutionKind.FOOTSTEPS, request_id)
 
+    def _stop(self, kind: ExecutionKind | None, why: str) -> None:
+        """Stop the running execution if it is of ``kind`` (None: any); it reports STOPPED."""
+        if self.execution is None or kind not in (None, self.execution[1]):
+            self.get_logger().info(f"stop ({why}): no {kind.value if kind else ''} execution running")
+            return
+        self.get_logger().warning(f"stopping {self.execution[1].value} {self.execution[2]}: {why}")
+        self.execution[0].stop(why)
+
+    def _on_diagnostics(self, msg) -> None:
+        if any(status.name == self.deadman.supervisor for status in msg.status):
+            if self.deadman.beat(time.monotonic()):
+                self.get_logger().info(f"supervisor /{self.deadman.supervisor} is back: executions accepted")
+
     def _start(self, execution, kind: ExecutionKind, request_id: int) -> None:
+        refusal = self.deadman.refusal()
+        if refusal is not None:
+            self._report(ExecutionOutcome(kind, request_id, OutcomeStatus.REJECTED, refusal))
+            return
         if self.execution is not None:
             busy = f"busy executing {self.execution[1].value} {self.execution[2]}"
             self._report(ExecutionOutcome(kind, request_id, OutcomeStatus.REJECTED, busy))
@@ -155,6 +188,10 @@ class SimBridgeNode(Node):
 
     # ------------------------------------------------------------------ the loop
     def _tick(self) -> None:
+        silence = self.deadman.check(time.monotonic())
+        if silence is not None:
+            self.get_logger().error(silence)
+            self._stop(None, silence)
         if self.parameters["real_time"] and self.world.time > time.monotonic() - self.wall_start:
             return
         for _ in range(STEPS_PER_TICK):
@@ -171,6 +208,8 @@ class SimBridgeNode(Node):
             self.publishers_by_name["CLOCK"].publish(Clock(clock=to_time_msg(now)))
         if self.schedules["state"].due(now):
             self._publish_state(now)
+        if self.parameters["tf_rate"] > 0 and self.schedules["tf"].due(now):
+            self.robot_state.publish(now)
         if self.parameters["camera_rate"] > 0 and self.schedules["camera"].due(now):
             self._publish_camera()
 

@@ -10,7 +10,7 @@ from rclpy.serialization import deserialize_message, serialize_message
 from sensor_msgs.msg import Image
 from std_msgs.msg import String
 
-from door_bringup.bags.player import PlaybackOptions, playback_offsets
+from door_bringup.bags.player import PlaybackOptions, PlaybackOptionsError, playback_offsets
 from door_bringup.bags.storage import BagError, BagWriter, StorageFormat, list_topics, read_messages
 from door_contract.topics import Topics, interface_class
 from ros_helpers import executor_for, spin_until
@@ -59,7 +59,7 @@ def test_missing_bag_is_a_clear_error(tmp_path):
 
 def test_playback_timing_scales_with_rate():
     assert playback_offsets([5_000_000_000, 6_000_000_000, 9_000_000_000], 2.0) == [0.0, 0.5, 2.0]
-    with pytest.raises(ValueError, match="rate"):
+    with pytest.raises(PlaybackOptionsError, match="rate"):
         PlaybackOptions(rate=0.0)
 
 

@@ -1,8 +1,10 @@
 """The colcon workspace: what ``ros2 run`` looks up exists, and each executable, started as a
 process over real DDS, shows its node in the graph and shuts down cleanly on SIGINT."""
 
+import os
 import re
 import subprocess
+import time
 from pathlib import Path
 
 import pytest
@@ -10,7 +12,7 @@ import rclpy
 
 from door_bringup.graph_spec import GRAPH
 from door_bringup.processes import ProcessSupervisor
-from door_bringup.workspace import WorkspaceError
+from door_bringup.workspace import WorkspaceError, find_repository_root
 from ros_helpers import executor_for, node_names, spin_until
 
 
@@ -46,17 +48,76 @@ def test_every_executable_starts_its_node_and_stops_on_sigint(workspace, rclpy_c
     assert codes == {name: 0 for name in expected}, _logs(tmp_path)
 
 
-@pytest.mark.parametrize("launch, override, message", [
-    (GRAPH[1], "vote_frames:=0", r"'vote_frames'.*\[1, 100\]"),
-    (GRAPH[4], "autonomy:=yolo", r"'autonomy'.*one of 'full', 'supervised', 'step'"),
-    (GRAPH[0], "physics_rate:=5.0", r"'physics_rate'.*\[60, 2000\] Hz"),
+@pytest.mark.parametrize("launch, overrides, message", [
+    (GRAPH[1], ["vote_frames:=0"], r"'vote_frames'.*\[1, 100\]"),
+    (GRAPH[4], ["autonomy:=yolo"], r"'autonomy'.*one of 'full', 'supervised', 'step'"),
+    (GRAPH[0], ["physics_rate:=5.0"], r"'physics_rate'.*\[60, 2000\] Hz"),
+    # issue #12: these exited 1 with a traceback
+    (GRAPH[1], ["door_width_min:=1.2", "door_width_max:=1.0"], r"'door_width_min' must not exceed 'door_width_max'"),
+    (GRAPH[0], ["robot_profile:=nonexistent"], r"robot profile not found"),
+    (GRAPH[2], ["robot_profile:=nonexistent"], r"robot profile not found"),
+    (GRAPH[3], ["robot_profile:=nonexistent"], r"'robot_profile' = 'nonexistent'.*not found"),
+    (GRAPH[4], ["robot_profile:=nonexistent"], r"'robot_profile' = 'nonexistent'.*not found"),
 ])
-def test_bad_parameter_stops_the_node_with_a_message(workspace, launch, override, message):
+def test_bad_parameter_stops_the_node_with_one_line(workspace, launch, overrides, message):
     command = [str(workspace.executable(launch.package, launch.executable)), "--ros-args",
-               "--params-file", str(workspace.params_file(launch.node_name)), "-p", override]
+               "--params-file", str(workspace.params_file(launch.node_name))]
+    for override in overrides:
+        command += ["-p", override]
     result = subprocess.run(command, env=workspace.environment(), capture_output=True, text=True, timeout=60)
-    assert result.returncode == 2
-    assert re.search(message, result.stdout + result.stderr), result.stderr
+    output = result.stdout + result.stderr
+    assert result.returncode == 2, output
+    assert re.search(message, output), output
+    assert "Traceback" not in output and len([line for line in output.splitlines() if "FATAL" in line]) == 1, output
+
+
+@pytest.mark.ros
+def test_an_undeclared_parameter_is_reported(workspace, tmp_path):
+    fsm = GRAPH[4]
+    command = [str(workspace.executable(fsm.package, fsm.executable)), "--ros-args", "-p", "aproval_timeout:=5.0",
+               "-p", "required_nodes:=['nobody']"]
+    log = tmp_path / "fsm.log"
+    process = subprocess.Popen(command, env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
+    try:
+        deadline = time.monotonic() + 30.0
+        while "ready:" not in log.read_text() and time.monotonic() < deadline and process.poll() is None:
+            time.sleep(0.05)  # polling the log file for a condition, with a deadline
+    finally:
+        process.send_signal(2)
+        process.wait(timeout=20)
+    assert "parameter 'aproval_timeout' is not a parameter of /fsm_supervisor and is ignored; did you mean " \
+           "'approval_timeout'?" in log.read_text()
+
+
+def test_the_installed_copy_finds_its_checkout(workspace):
+    installed = next((workspace.install / "door_bringup").rglob("door_bringup/workspace.py"))
+    assert find_repository_root(installed) == workspace.root
+    with pytest.raises(WorkspaceError, match="DOOR_WORKSPACE"):
+        find_repository_root(Path("/tmp/elsewhere/x.py"))
+
+
+def test_sourcing_the_workspace_keeps_discovery_on_this_machine(workspace):
+    """The colcon hook of door_contract: LOCALHOST unless the user chose a range (no DDS here)."""
+    script = f"set +u; . {workspace.install}/setup.sh; echo \"range=$ROS_AUTOMATIC_DISCOVERY_RANGE\""
+    for given, expected in ((None, "LOCALHOST"), ("SUBNET", "SUBNET")):
+        env = {k: v for k, v in os.environ.items() if k != "ROS_AUTOMATIC_DISCOVERY_RANGE"}
+        if given:
+            env["ROS_AUTOMATIC_DISCOVERY_RANGE"] = given
+        result = subprocess.run(["sh", "-c", script], env=env, capture_output=True, text=True, timeout=30)
+        assert f"range={expected}" in result.stdout, result.stdout + result.stderr
+
+
+def test_every_entry_point_defaults_discovery_to_localhost():
+    """Each command creates its participant only after keep_discovery_local (no DDS started here)."""
+    import inspect
+
+    from door_bringup import door_task, graph, ros2_cli
+    from door_bringup.bags import player
+    from door_contract import node_support
+    for module, function in ((node_support, "run_node"), (graph, "check_graph"), (door_task, "run_task"),
+                             (ros2_cli, "_topic"), (player, "_play")):
+        source = inspect.getsource(getattr(module, function))
+        assert source.index("keep_discovery_local()") < source.index("rclpy.init("), module.__name__
 
 
 def _logs(log_dir: Path) -> str:

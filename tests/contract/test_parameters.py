@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from door_bringup.graph_spec import GRAPH
+from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH
 from door_bringup.params_files import SPECS_BY_NODE
 from door_contract.errors import ParameterRangeError
 from door_contract.parameters import ParameterSpec, defaults, read_params_file, validate_all
@@ -12,7 +12,7 @@ RATE = ParameterSpec("rate", 10.0, "a rate", unit="Hz", minimum=1.0, maximum=100
 
 
 def test_every_node_has_a_params_file_equal_to_its_specs(workspace):
-    assert set(SPECS_BY_NODE) == {launch.node_name for launch in GRAPH}
+    assert set(SPECS_BY_NODE) == {launch.node_name for launch in (*GRAPH, FOXGLOVE_BRIDGE)}
     for node_name, specs in SPECS_BY_NODE.items():
         in_file = read_params_file(workspace.params_file(node_name), node_name)
         assert validate_all(specs, in_file) == defaults(specs), node_name
@@ -44,3 +44,12 @@ def test_choices_and_unknown_names():
         autonomy.validate("yolo")
     with pytest.raises(ParameterRangeError, match="unknown parameter"):
         validate_all([autonomy], {"autonmy": "full"})
+
+
+def test_an_inverted_range_is_one_clear_error():
+    from door_contract.errors import ParameterRangeError
+    from door_contract.parameters import require_ordered
+
+    require_ordered({"low": 0.8, "high": 1.0}, "low", "high")
+    with pytest.raises(ParameterRangeError, match="'low' must not exceed 'high'"):
+        require_ordered({"low": 1.2, "high": 1.0}, "low", "high")

@@ -19,6 +19,7 @@ from door_contract.topics import Topics
 from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
 from ros_helpers import executor_for, spin_until
 
+pytestmark = pytest.mark.ros
 DETECTOR = next(launch for launch in GRAPH if launch.node_name == "door_detector")
 FRAME = "head_camera_optical_frame"
 
@@ -113,16 +114,45 @@ def test_rendered_frames_give_a_voted_estimate_in_odom(camera, rendered, detecto
     assert np.dot(estimate.normal, handle[:3, 0]) > np.cos(np.radians(2.0))
 
 
-def test_scribble_outside_the_image_is_refused(camera, rendered, detector):
-    frame, _ = rendered
-    scribble = PolygonStamped()
-    scribble.polygon.points = [Point32(x=5000.0, y=10.0), Point32(x=5010.0, y=12.0), Point32(x=5005.0, y=20.0)]
-    camera.pubs["SCRIBBLE"].publish(scribble)
-    # the scribble and the frame travel on different topics: wait until the node has it
-    assert spin_until(camera.executor, lambda: any("scribble with 3 points" in m for m in camera.messages), 10.0)
+@pytest.mark.parametrize("points, why", [
+    ([(1e6, 1e6), (1e6 + 5, 1e6), (1e6, 1e6 + 5)], "outside"),   # issue #12: blocked detection for 30 s
+    ([(5000.0, 10.0), (5010.0, 12.0), (5005.0, 20.0)], "outside"),
+    ([(float("nan"), 10.0), (20.0, 20.0)], "NaN"),
+    ([], "0 point(s)"),
+])
+def test_a_bad_scribble_is_refused_at_once_and_automatic_detection_goes_on(camera, rendered, detector, points, why):
+    frame, handle = rendered
     depth = np.where(np.isfinite(frame.depth), frame.depth, np.nan).astype(np.float32)
-    before = camera.rejected[-1] if camera.rejected else 0
-    camera.publish(300.0, np.ascontiguousarray(frame.rgb), depth, frame.intrinsics, frame.camera_pose)
-    assert spin_until(camera.executor, lambda: camera.rejected and camera.rejected[-1] > before, 30.0)
-    assert not any(e.stamp >= 300.0 for e in camera.estimates)
-    assert spin_until(camera.executor, lambda: any("outside" in m for m in camera.messages), 10.0), camera.messages
+    first = 300.0 + 20.0 * len(camera.estimates)
+    camera.publish(first, np.ascontiguousarray(frame.rgb), depth, frame.intrinsics, frame.camera_pose)
+    assert spin_until(camera.executor, lambda: camera.frames and camera.frames[-1] >= 1, 30.0)  # it knows the size
+    scribble = PolygonStamped()
+    scribble.polygon.points = [Point32(x=x, y=y) for x, y in points]
+    camera.pubs["SCRIBBLE"].publish(scribble)
+    assert spin_until(camera.executor, lambda: any("scribble refused" in m and why in m for m in camera.messages),
+                      10.0), camera.messages[-5:]
+    for index in range(1, 12):  # automatic detection is not blocked: a voted estimate follows
+        if any(e.stamp >= first for e in camera.estimates):
+            break
+        seen = camera.frames[-1]
+        camera.publish(first + index * 0.5, np.ascontiguousarray(frame.rgb), depth, frame.intrinsics, frame.camera_pose)
+        assert spin_until(camera.executor, lambda: camera.frames[-1] > seen, 30.0)
+    assert spin_until(camera.executor, lambda: any(e.stamp >= first for e in camera.estimates), 30.0)
+    estimate = next(e for e in camera.estimates if e.stamp >= first)
+    assert estimate.mode == "automatic"
+    assert np.linalg.norm(np.subtract(estimate.handle_position, handle[:3, 3])) < 0.02
+
+
+def test_frames_without_camera_info_are_reported(camera, rendered):
+    frame, _ = rendered
+    depth = np.where(np.isfinite(frame.depth), frame.depth, np.nan).astype(np.float32)
+    reported = lambda: any("dropped" in m and "CameraInfo" in m for m in camera.messages)
+    for index in range(30):  # frame after frame, a second apart, never with its CameraInfo
+        stamp = 500.0 + index
+        camera.pubs["COLOR_IMAGE"].publish(array_to_image(np.ascontiguousarray(frame.rgb), "rgb8", FRAME, stamp))
+        camera.pubs["DEPTH_IMAGE"].publish(array_to_image(depth, "32FC1", FRAME, stamp))
+        camera.pubs["CAMERA_POSE"].publish(matrix_to_pose_stamped(frame.camera_pose, "odom", stamp))
+        if spin_until(camera.executor, reported, 0.5):
+            break
+    assert reported(), camera.messages[-3:]
+    assert "door_detector" in camera.node.get_node_names()

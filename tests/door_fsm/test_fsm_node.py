@@ -14,6 +14,7 @@ from door_contract.payloads import DoorEstimate, HingeSide, TaskReport, decode, 
 from door_contract.topics import Topics
 from ros_helpers import executor_for, spin_until
 
+pytestmark = pytest.mark.ros
 FSM = next(launch for launch in GRAPH if launch.node_name == "fsm_supervisor")
 ESTIMATE = DoorEstimate(0.0, "odom", (1.2, -0.35, 0.95), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
                         ((1.2, 0.46, 0.0), (1.2, -0.46, 0.0), (1.2, -0.46, 2.08), (1.2, 0.46, 2.08)),
@@ -95,7 +96,9 @@ def test_approval_request_then_operator_silence_times_out(supervisor):
 
 def test_reject_pause_resume_abort_and_unknown_command(supervisor):
     assert supervisor.wait(lambda: supervisor.requests)
-    supervisor.say("reject")
+    supervisor.say("reject")  # no id: refused, nothing changes
+    supervisor.say("reject 2")  # another request's id: refused
+    supervisor.say("reject 1")
     assert supervisor.wait(lambda: len(supervisor.requests) >= 2)  # re-detected, asked again
     assert supervisor.requests[1].startswith("DETECT_DOOR #2: approve detection")
     supervisor.say("dance")
@@ -106,7 +109,9 @@ def test_reject_pause_resume_abort_and_unknown_command(supervisor):
     supervisor.say("abort")
     assert supervisor.wait(lambda: supervisor.states[-1] == "FAILED")
     assert supervisor.wait(lambda: any("aborted by the operator" in f for f in supervisor.failures), 10.0)
-    assert "unknown operator command 'dance'" in supervisor.log_path.read_text()
+    log = supervisor.log_path.read_text()
+    assert "unknown operator command 'dance'" in log
+    assert "'reject' needs the id" in log and "'reject 2' refused: the current request is #1" in log
 
 
 def test_a_killed_node_fails_the_task(workspace, rclpy_context, tmp_path):

@@ -5,10 +5,23 @@ import pytest
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.machine import DoorTaskMachine, MachineOptions
-from door_fsm.operator_commands import AutonomyLevel, OperatorCommand, UnknownCommandError, parse_command
+from door_fsm.operator_commands import AutonomyLevel, OperatorCommand, OperatorWord, UnknownCommandError, parse_command
+from door_fsm.records import Instant
 from door_fsm.states import DoorOpening, Phase, StateOutcome, TaskState
 from door_fsm.wiring import WiringError, build_wiring, success_sequence, validate_wiring
 from door_fsm.work import WorkKind
+
+
+def t(seconds: float) -> Instant:
+    """The same reading on both clocks."""
+    return Instant(seconds, seconds)
+
+
+def say(machine, command, request_id=None, now=10.0):
+    """The operator's word; answers name the machine's current request unless told otherwise."""
+    if command.answers_a_request and request_id is None:
+        request_id = machine.request_id
+    return machine.handle(ev.OperatorSaid(OperatorWord(command, request_id)), t(now))
 
 
 class Robot:
@@ -16,6 +29,7 @@ class Robot:
 
     def __init__(self, machine: DoorTaskMachine, approve: bool = True):
         self.machine, self.approve, self.now = machine, approve, 0.0
+        self.requests: list = []
         self.approvals: list[str] = []
         self.visited: list[TaskState] = []
 
@@ -33,15 +47,16 @@ class Robot:
         if isinstance(action, act.AnnounceState):
             self.visited.append(m.state)
         if isinstance(action, (act.RequestDetection, act.RequestFootsteps, act.RequestMotion)):
-            return m.handle(ev.ProposalReady(action.request_id, {"cost": 1.0}), self.now)
+            self.requests.append(action)
+            return m.handle(ev.ProposalReady(action.request_id, {"cost": 1.0}, work_s=2.0), t(self.now))
         if isinstance(action, act.CallGrasp) and action.close:
-            return m.handle(ev.GraspAnswered(action.request_id, True), self.now)
+            return m.handle(ev.GraspAnswered(action.request_id, True), t(self.now))
         if isinstance(action, act.Execute):
-            return m.handle(ev.ExecutionFinished(action.request_id, True), self.now)
+            return m.handle(ev.ExecutionFinished(action.request_id, True), t(self.now))
         if isinstance(action, act.AskApproval):
             self.approvals.append(action.text)
             if self.approve:
-                return m.handle(ev.OperatorSaid(OperatorCommand.APPROVE), self.now)
+                return say(m, OperatorCommand.APPROVE, action.request_id, self.now)
         return []
 
 
@@ -49,7 +64,7 @@ class Robot:
 def test_success_path_visits_fig3_states_in_order(opening):
     machine = DoorTaskMachine(MachineOptions(opening=opening))
     robot = Robot(machine)
-    assert robot.run(machine.start(0.0)) is TaskState.DONE
+    assert robot.run(machine.start(t(0.0))) is TaskState.DONE
     assert tuple(robot.visited) == success_sequence(opening)
     assert (TaskState.BLOCK in robot.visited) is (opening is DoorOpening.PULL)
     assert all(r.outcome is StateOutcome.SUCCEEDED for r in machine.records)
@@ -66,7 +81,7 @@ def test_success_path_visits_fig3_states_in_order(opening):
 def test_autonomy_levels_decide_which_proposals_wait(autonomy, expected):
     machine = DoorTaskMachine(MachineOptions(opening=DoorOpening.PUSH, autonomy=autonomy))
     robot = Robot(machine)
-    assert robot.run(machine.start(0.0)) is TaskState.DONE
+    assert robot.run(machine.start(t(0.0))) is TaskState.DONE
     assert len(robot.approvals) == expected
     if expected:
         assert robot.approvals[0].startswith("DETECT_DOOR #1: approve detection")
@@ -74,7 +89,7 @@ def test_autonomy_levels_decide_which_proposals_wait(autonomy, expected):
 
 def _until_approval(machine):
     robot = Robot(machine, approve=False)
-    robot.run(machine.start(0.0))
+    robot.run(machine.start(t(0.0)))
     assert machine.phase is Phase.AWAITING_APPROVAL
     return robot
 
@@ -83,38 +98,38 @@ def test_reject_repeats_the_state_with_a_new_request():
     machine = DoorTaskMachine(MachineOptions())
     _until_approval(machine)
     first_id = machine.request_id
-    actions = machine.handle(ev.OperatorSaid(OperatorCommand.REJECT), 10.0)
+    actions = say(machine, OperatorCommand.REJECT)
     assert machine.state is TaskState.DETECT_DOOR and machine.phase is Phase.PLANNING
     assert any(isinstance(a, act.RequestDetection) and a.request_id > first_id for a in actions)
     # the old request's late answer is stale
-    assert machine.handle(ev.ProposalReady(first_id), 11.0) == []
+    assert machine.handle(ev.ProposalReady(first_id), t(11.0)) == []
     assert machine.phase is Phase.PLANNING
 
 
 def test_pause_and_resume_re_enter_the_state():
     machine = DoorTaskMachine(MachineOptions())
     _until_approval(machine)
-    machine.handle(ev.OperatorSaid(OperatorCommand.PAUSE), 5.0)
+    say(machine, OperatorCommand.PAUSE)
     assert machine.state is TaskState.PAUSED
-    assert machine.tick(10_000.0) == []  # no deadline while paused
-    actions = machine.handle(ev.OperatorSaid(OperatorCommand.RESUME), 6.0)
+    assert machine.tick(t(10_000.0)) == []  # no deadline while paused
+    actions = say(machine, OperatorCommand.RESUME)
     assert machine.state is TaskState.DETECT_DOOR
     assert any(isinstance(a, act.RequestDetection) for a in actions)
 
 
 def test_manual_then_resume():
     machine = DoorTaskMachine(MachineOptions())
-    machine.start(0.0)
-    machine.handle(ev.OperatorSaid(OperatorCommand.MANUAL), 1.0)
+    machine.start(t(0.0))
+    say(machine, OperatorCommand.MANUAL)
     assert machine.state is TaskState.MANUAL
-    machine.handle(ev.OperatorSaid(OperatorCommand.RESUME), 2.0)
+    say(machine, OperatorCommand.RESUME)
     assert machine.state is TaskState.DETECT_DOOR
 
 
 def test_abort_fails_with_reason():
     machine = DoorTaskMachine(MachineOptions())
-    machine.start(0.0)
-    machine.handle(ev.OperatorSaid(OperatorCommand.ABORT), 1.0)
+    machine.start(t(0.0))
+    say(machine, OperatorCommand.ABORT)
     assert machine.state is TaskState.FAILED
     assert "aborted by the operator" in machine.failure_reason
 
@@ -122,8 +137,8 @@ def test_abort_fails_with_reason():
 def test_operator_silence_times_out():
     machine = DoorTaskMachine(MachineOptions(approval_timeout_s=30.0))
     robot = _until_approval(machine)
-    assert machine.tick(robot.now + 29.0) == []
-    machine.tick(robot.now + 31.0)
+    assert machine.tick(t(robot.now + 29.0)) == []
+    machine.tick(t(robot.now + 31.0))
     assert machine.state is TaskState.FAILED
     assert "operator did not answer within 30 s" in machine.failure_reason
     assert machine.records[-1].outcome is StateOutcome.TIMEOUT
@@ -131,10 +146,10 @@ def test_operator_silence_times_out():
 
 def test_planning_failures_repeat_then_fail():
     machine = DoorTaskMachine(MachineOptions(max_repeats=2))
-    machine.start(0.0)
+    machine.start(t(0.0))
     for attempt in range(3):
         assert machine.state is TaskState.DETECT_DOOR
-        machine.handle(ev.ProposalFailed(machine.request_id, "no door in view"), attempt + 1.0)
+        machine.handle(ev.ProposalFailed(machine.request_id, "no door in view"), t(attempt + 1.0))
     assert machine.state is TaskState.FAILED
     assert "no door in view" in machine.failure_reason
     assert [r.attempt for r in machine.records] == [1, 2, 3]
@@ -142,7 +157,7 @@ def test_planning_failures_repeat_then_fail():
 
 def _advance_to(machine, state):
     robot = Robot(machine)
-    pending = machine.start(0.0)
+    pending = machine.start(t(0.0))
     while machine.state is not state:
         pending = pending[1:] + robot.answer(pending[0])
     return pending
@@ -151,13 +166,13 @@ def _advance_to(machine, state):
 def test_slip_goes_back_to_move_to_handle_then_fails_after_limit():
     machine = DoorTaskMachine(MachineOptions(max_repeats=1, autonomy=AutonomyLevel.FULL))
     _advance_to(machine, TaskState.TURN_HANDLE)
-    machine.handle(ev.HandSlipped("constraint force 412 N > 300 N"), 50.0)
+    machine.handle(ev.HandSlipped("constraint force 412 N > 300 N"), t(50.0))
     assert machine.state is TaskState.MOVE_TO_HANDLE
     _advance_to_again = Robot(machine)
     pending = [act.RequestMotion(machine.request_id, "approach_handle")]
     while machine.state is not TaskState.TURN_HANDLE:
         pending = pending[1:] + _advance_to_again.answer(pending[0])
-    machine.handle(ev.HandSlipped("again"), 60.0)
+    machine.handle(ev.HandSlipped("again"), t(60.0))
     assert machine.state is TaskState.FAILED
     assert "slipped 2 times" in machine.failure_reason
 
@@ -165,23 +180,23 @@ def test_slip_goes_back_to_move_to_handle_then_fails_after_limit():
 def test_failed_grasp_re_approaches_the_handle():
     machine = DoorTaskMachine(MachineOptions(autonomy=AutonomyLevel.FULL))
     _advance_to(machine, TaskState.GRASP)
-    machine.handle(ev.GraspAnswered(machine.request_id, False, "hand 4.9 cm from the handle"), 9.0)
+    machine.handle(ev.GraspAnswered(machine.request_id, False, "hand 4.9 cm from the handle"), t(9.0))
     assert machine.state is TaskState.MOVE_TO_HANDLE
 
 
 def test_lost_node_fails_the_task():
     machine = DoorTaskMachine(MachineOptions())
-    machine.start(0.0)
-    machine.handle(ev.NodeLost("trajectory_optimizer"), 1.0)
+    machine.start(t(0.0))
+    machine.handle(ev.NodeLost("trajectory_optimizer"), t(1.0))
     assert machine.state is TaskState.FAILED
     assert "/trajectory_optimizer is gone" in machine.failure_reason
 
 
 def test_approve_without_proposal_is_a_notice():
     machine = DoorTaskMachine(MachineOptions())
-    machine.start(0.0)
-    actions = machine.handle(ev.OperatorSaid(OperatorCommand.APPROVE), 1.0)
-    assert isinstance(actions[0], act.Notice) and "nothing to approve" in actions[0].text
+    machine.start(t(0.0))
+    actions = say(machine, OperatorCommand.APPROVE)
+    assert isinstance(actions[0], act.Notice) and "not awaiting approval" in actions[0].text
 
 
 def test_ready_to_walk_opens_the_hand_first():
@@ -192,9 +207,13 @@ def test_ready_to_walk_opens_the_hand_first():
 
 
 def test_parse_commands():
-    assert parse_command("  Approve\n") is OperatorCommand.APPROVE
-    with pytest.raises(UnknownCommandError, match="use one of approve"):
-        parse_command("go go go")
+    assert parse_command("  Approve 7\n") == OperatorWord(OperatorCommand.APPROVE, 7)
+    assert parse_command("STOP") == OperatorWord(OperatorCommand.STOP)
+    for text, match in [("go go go", "unknown operator command"), ("approve", "needs the id"),
+                        ("repeat seven", "needs the id"), ("approve 7 8", "needs the id"), ("pause 3", "takes no"),
+                        ("", "unknown"), ("approve " + "9" * 500, "characters")]:
+        with pytest.raises(UnknownCommandError, match=match):
+            parse_command(text)
 
 
 def test_miswired_machine_is_refused():
@@ -218,11 +237,11 @@ def test_table_one_rows_from_reports():
     runs = []
     for opening in DoorOpening:
         machine = DoorTaskMachine(MachineOptions(opening=opening, autonomy=AutonomyLevel.FULL))
-        Robot(machine).run(machine.start(0.0))
+        Robot(machine).run(machine.start(t(0.0)))
         runs.append({"attempts": machine.report()})
     failed = DoorTaskMachine(MachineOptions(max_repeats=0))
-    failed.start(0.0)
-    failed.handle(ev.ProposalFailed(failed.request_id, "no door"), 1.0)
+    failed.start(t(0.0))
+    failed.handle(ev.ProposalFailed(failed.request_id, "no door"), t(1.0))
     runs.append({"attempts": failed.report()})
     rows = {row.phase: row for row in phase_rows(runs)}
     assert (rows["DETECT_DOOR"].runs, rows["DETECT_DOOR"].successes) == (3, 2)

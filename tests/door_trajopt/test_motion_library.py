@@ -14,7 +14,9 @@ from door_trajopt.door_model import rotation_vector
 from door_trajopt.library import Backend, MotionLibrary
 from door_trajopt.chomp import ChompSolver
 from door_trajopt.evaluation import ProblemEvaluator
-from door_trajopt.motions import Motion, _tcp_in_grasp, build_motion, start_door_for
+from door_trajopt.motions import (DoorStateOutOfRange, Motion, _tcp_in_grasp, anchored_to_hand, build_motion,
+                                  start_door_for)
+from door_trajopt.problem import TrajoptError
 from door_trajopt.sqp import SqpSolver
 from door_trajopt.result import Outcome
 from door_scenes import estimate_from_world, motion_setup, stand_world, talos_kinematics
@@ -54,10 +56,13 @@ def _acceleration_cost(trajectory):
 
 
 def test_approach_ends_on_the_handle_within_limits_and_balance(approach):
+    """The TCP ends ``grasp_clearance`` in front of the grasp point (the grasp closes within
+    2 cm), oriented for the grasp."""
     setup, plan = approach
     trajectory = plan.result.trajectory
     position, rotation = _tcp_errors(setup, trajectory[-1:])[0]
-    assert position < 0.005 and rotation < 0.01
+    clearance = MotionLibrary().options.grasp_clearance
+    assert position == pytest.approx(clearance, abs=0.005) and rotation < 0.01
     chain = setup.chain
     assert np.all(trajectory[:, :chain.size] >= chain.lower - 1e-6)
     assert np.all(trajectory[:, :chain.size] <= chain.upper + 1e-6)
@@ -92,7 +97,7 @@ def test_turn_keeps_the_hand_on_the_handle_along_the_closed_chain(approach, back
     start = plan.result.trajectory[-1, :setup.chain.size]
     turn = MotionLibrary().plan(Motion.TURN_HANDLE, setup, start, backend)
     assert turn.succeeded, turn.result.message
-    errors = _tcp_errors(setup, turn.result.trajectory)
+    errors = _tcp_errors(anchored_to_hand(setup, start), turn.result.trajectory)  # the hand as it closed
     assert errors[:, 0].max() < 0.005 and errors[:, 1].max() < 0.01
     assert turn.final_door[1] == pytest.approx(MotionLibrary().options.handle_turn, abs=1e-4)
     assert turn.final_door[0] == pytest.approx(0.0, abs=1e-9)  # the door stays shut while turning
@@ -193,3 +198,35 @@ def test_pulled_door_is_blocked_by_the_other_hand_when_the_first_lets_go(hinge):
         assert world.scene_penetration() < 0.01
     finally:
         world.close()
+
+
+@pytest.mark.parametrize("door_angles", [(1e6, 0.0), (-0.5, 0.0), (0.0, 2.0), (float("nan"), 0.0)])
+def test_a_door_state_outside_the_stops_is_refused_before_any_work(scene, door_angles):
+    """A turn_handle at θ = 1e6 rad once ran every IK and guess to its budget (80 s)."""
+    world, kinematics, estimate = scene
+    setup = motion_setup(world, kinematics, estimate, door_angles=door_angles)
+    with pytest.raises(DoorStateOutOfRange, match="outside the door's range") as error:
+        MotionLibrary().plan(Motion.TURN_HANDLE, setup, setup.chain.chain_of(setup.chain.body_q))
+    assert isinstance(error.value, ValueError)  # the node reports ValueErrors as REJECTED
+
+
+def test_a_repeat_skips_the_cache_and_tries_more_guesses_with_more_iterations(scene):
+    world, kinematics, estimate = scene
+    setup = motion_setup(world, kinematics, estimate)
+    start = setup.chain.chain_of(setup.chain.body_q)
+    library = MotionLibrary()
+    first = library.plan(Motion.APPROACH_HANDLE, setup, start)
+    cached = library.plan(Motion.APPROACH_HANDLE, setup, start)
+    assert first.succeeded and cached.succeeded
+    assert np.array_equal(cached.initial_guess, first.result.trajectory)  # the first try reuses the cache
+    repeat = library.plan(Motion.APPROACH_HANDLE, setup, start, attempt=1)
+    assert repeat.succeeded
+    assert not np.array_equal(repeat.initial_guess, first.result.trajectory)  # a repeat starts afresh
+    unreachable = motion_setup(world, kinematics, replace(
+        estimate, handle_position=(estimate.handle_position[0] + 1.5, *estimate.handle_position[1:])))
+    tries = [MotionLibrary(starts=1, max_iterations=5).plan(Motion.APPROACH_HANDLE, unreachable,
+                                                            start, attempt=attempt) for attempt in (0, 1)]
+    assert [plan.attempts for plan in tries] == [1, 2]
+    assert tries[1].result.iterations > tries[0].result.iterations
+    with pytest.raises(TrajoptError, match="attempt"):
+        library.plan(Motion.APPROACH_HANDLE, setup, start, attempt=-1)

@@ -127,3 +127,11 @@ def test_nan_joint_states_are_rejected(robot):
     robot.state["positions"] = {**robot.state["positions"], "arm_right_4_joint": -0.5}
     again = robot.request(MotionRequest(40, "approach_handle", "push", "", 0.0, ESTIMATE.stamp))
     assert again.status is OutcomeStatus.SUCCESS, again.reason  # the node kept running
+
+
+def test_a_door_angle_outside_the_stops_is_rejected_at_once(robot):
+    """turn_handle at 1e6 rad once blocked the optimiser for 80 s; the library refuses it."""
+    outcome = robot.request(MotionRequest(50, "turn_handle", "push", "", 1e6, ESTIMATE.stamp))
+    assert outcome.status is OutcomeStatus.REJECTED and "door_angle 1e+06 rad is outside" in outcome.reason
+    again = robot.request(MotionRequest(51, "approach_handle", "push", "", 0.0, ESTIMATE.stamp))
+    assert again.status is OutcomeStatus.SUCCESS, again.reason  # the node kept running

@@ -3,18 +3,31 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
+from door_robot.profile import load_profile
 from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide
 from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.geometry import wrap_angle
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import FootstepPlan
+from footstep_planner.robot_limits import options_for_walking
 from footstep_planner.world import World
 
 DEFAULT_OPTIONS = FootstepPlannerOptions()
 SEPARATION = DEFAULT_OPTIONS.nominal_foot_separation
+SHRINKS = (1.0, 0.7)
+"""The profile's stride and turn as they are, and 30 % shorter (what a physical walker may achieve)."""
+
+
+def profile_options(shrink: float = 1.0, profile: str = "talos", heuristic_weight: float = 2.5,
+                    max_expansions: int = 20_000) -> FootstepPlannerOptions:
+    """The node's options for a robot profile, its stride and turn limits scaled by ``shrink``."""
+    walking = load_profile(profile).walking
+    walking = replace(walking, max_stride=walking.max_stride * shrink, max_turn=walking.max_turn * shrink)
+    return options_for_walking(walking, heuristic_weight, max_expansions, 30.0)
 
 
 def stance_at(x: float, y: float, yaw: float = 0.0) -> Stance:

@@ -3,16 +3,20 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from footstep_planner.actions import CLOSING_STEP, ActionSet, StepAction, is_kinematically_valid
+from footstep_planner.actions import (CLEARANCE_STEP, CLOSING_STEP, ActionSet, StepAction, cleared_turn,
+                                      is_kinematically_valid)
 from footstep_planner.footstep import Foot
 from footstep_planner.geometry import rectangle_corners
 from footstep_planner.obstacles import Obstacle
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.world import World
+
+from footstep_scenes import profile_options
 
 OPTIONS = FootstepPlannerOptions()
 ACTIONS = ActionSet.from_options(OPTIONS)
@@ -82,3 +86,26 @@ def test_action_set_scales_with_the_options() -> None:
     short = ActionSet.from_options(FootstepPlannerOptions(max_stride=0.2, max_turn=0.2))
     assert max(a.forward for a in short.actions) == pytest.approx(0.2)
     assert short.max_turn == pytest.approx(0.2)
+
+
+@pytest.mark.parametrize("shrink", [1.0, 0.7])
+def test_full_turns_clear_the_support_sole_with_talos_soles_close_together(shrink: float) -> None:
+    """TALOS stands with its 0.13 m soles 0.17 m apart: a full turn in place about the sole's
+    centre swings the heel (toe-out) or the toe (toe-in) into the support sole's margin. The
+    turns move outward just enough, so the full turn exists in place and walking, both ways."""
+    options = profile_options(shrink)
+    actions = ActionSet.from_options(options).actions
+    full = [a for a in actions if abs(a.turn) == pytest.approx(options.max_turn)]
+    in_place_and_walking, both_ways = {True, False}, {True, False}
+    assert {(a.forward == 0.0, a.turn > 0.0) for a in full} == {(p, w) for p in in_place_and_walking for w in both_ways}
+    for action in full:
+        assert is_kinematically_valid(action, options)
+        assert 0.0 <= action.outward <= options.max_side_step
+        tighter = StepAction(action.forward, action.outward - CLEARANCE_STEP, action.turn)
+        assert action.outward == 0.0 or not is_kinematically_valid(tighter, options)  # the least shift
+
+
+def test_a_turn_that_no_shift_can_clear_is_dropped() -> None:
+    options = profile_options()
+    crossing = StepAction(-options.max_backward_step, 0.0, options.max_turn)
+    assert cleared_turn(replace(crossing, outward=-0.2), replace(options, max_side_step=0.0)) is None

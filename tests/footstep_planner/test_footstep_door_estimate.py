@@ -14,7 +14,7 @@ from door_contract.payloads import DoorEstimate, HingeSide
 from door_sim_bridge.world import DoorConfig, DoorWorld, WorldConfig
 from door_sim_bridge.world import HingeSide as SimHingeSide
 from footstep_planner.door import DoorOpening
-from footstep_planner.footstep_planner_node import door_geometry_from_estimate
+from footstep_planner.requests import door_geometry_from_estimate
 from footstep_planner.goals import through_door_pose
 
 

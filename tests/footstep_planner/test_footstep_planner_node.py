@@ -54,7 +54,7 @@ class Client:
         self.node.create_subscription(DiagnosticArray, Topics.DIAGNOSTICS.name, lambda a: self.inputs.update(
             {kv.key: kv.value for s in a.status if s.name == "footstep_planner" for kv in s.values}), 10)
 
-    def request(self, request_id, goal, x=-4.0, y=0.0, opening="push", door=ESTIMATE):
+    def request(self, request_id, goal, x=-4.0, y=0.0, opening="push", door=ESTIMATE, attempt=0):
         """Publish odometry and the door like the graph does, wait until the planner reports
         (on /diagnostics) that it has both, then request."""
         odom = Odometry()
@@ -69,7 +69,7 @@ class Client:
         expected = {"odom": f"{request_id}.000000000", "door": f"{float(request_id):.3f}"}
         assert spin_until(self.executor, lambda: self.inputs.get("odom") == expected["odom"]
                           and self.inputs.get("door") == expected["door"], 30.0), self.log.read_text()
-        self.request_pub.publish(String(data=encode(FootstepRequest(request_id, goal, opening))))
+        self.request_pub.publish(String(data=encode(FootstepRequest(request_id, goal, opening, attempt=attempt))))
         assert spin_until(self.executor, lambda: any(o.request_id == request_id for o in self.outcomes), 30.0), \
             self.log.read_text()
         return next(o for o in self.outcomes if o.request_id == request_id)
@@ -114,3 +114,10 @@ def test_goal_behind_a_closed_wall_fails_with_reason(client):
 def test_unknown_goal_is_rejected(client):
     outcome = client.request(4, "moon")
     assert outcome.status is OutcomeStatus.REJECTED and "unknown goal" in outcome.reason
+
+
+def test_a_repeat_is_planned_and_a_negative_attempt_is_rejected(client):
+    repeat = client.request(5, "stand", attempt=1)
+    assert repeat.status is OutcomeStatus.SUCCESS, repeat.reason
+    refused = client.request(6, "stand", attempt=-1)
+    assert refused.status is OutcomeStatus.REJECTED and "attempt" in refused.reason

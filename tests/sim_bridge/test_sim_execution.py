@@ -1,4 +1,8 @@
-"""Executing joint trajectories and footstep plans; every bad input is REJECTED and nothing moves."""
+"""Executing joint trajectories and footstep plans; every bad input is REJECTED and nothing moves.
+
+These run on the kinematic robot (fixed base, glided along footsteps: fast and exact); the
+physical robot's walking and balance are tested in test_sim_walking.py.
+"""
 
 import math
 
@@ -9,7 +13,7 @@ from door_contract.converters.footsteps import Foot, FootPlacement
 from door_contract.converters.trajectory import JointPath
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, decode, encode
 from door_sim_bridge.execution import ExecutionPhase, FootstepExecution, TrajectoryExecution
-from door_sim_bridge.world import DoorWorld, StanceConfig
+from door_sim_bridge.world import DoorWorld, RobotMode, StanceConfig, WorldConfig
 from door_contract.geometry import yaw_of
 
 ARM = ("arm_left_1_joint", "arm_left_2_joint", "arm_left_4_joint", "torso_1_joint")
@@ -17,7 +21,7 @@ ARM = ("arm_left_1_joint", "arm_left_2_joint", "arm_left_4_joint", "torso_1_join
 
 @pytest.fixture(scope="module")
 def world():
-    with DoorWorld() as sim:
+    with DoorWorld(WorldConfig(robot_mode=RobotMode.KINEMATIC)) as sim:
         yield sim
 
 

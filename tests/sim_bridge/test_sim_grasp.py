@@ -8,7 +8,7 @@ from door_contract.payloads import OutcomeStatus
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import Side, load_profile
 from door_sim_bridge.execution import TrajectoryExecution
-from door_sim_bridge.world import DoorWorld, EventKind, WorldConfig
+from door_sim_bridge.world import DoorWorld, EventKind, RobotMode, WorldConfig
 from door_sim_bridge.world.transforms import translation
 
 HAND = Side.RIGHT  # the default door is hinged on the left: its handle is on the robot's right
@@ -58,7 +58,9 @@ def test_grasp_made_within_2_cm_then_released(world, kinematics):
 
 
 def test_hand_turns_the_handle_and_pushes_the_door_open(world, kinematics):
-    """The WPI-CMU sequence: grasp, turn the lever past the latch, push the leaf open."""
+    """The WPI-CMU sequence: grasp, turn the lever past the latch, push the leaf open — on the
+    physical robot, balancing, with neither foot slipping more than 1 cm."""
+    feet_before = world.foot_placements()
     reach_handle(world, kinematics, HAND)
     assert world.grasp(HAND, close=True).success
     grasp_then = world.handle_grasp_pose()
@@ -81,9 +83,20 @@ def test_hand_turns_the_handle_and_pushes_the_door_open(world, kinematics):
     assert world.holding(HAND) and not world.slipped(HAND)
     assert world.hand_handle_distance(HAND) < 0.01
     assert world.peak_grasp_force(HAND) < 0.5 * world.config.grasp_break_force
+    assert not world.fallen
+    feet_after = world.foot_placements()
+    for foot, before in feet_before.items():
+        assert np.hypot(feet_after[foot].x - before.x, feet_after[foot].y - before.y) < 0.01
 
 
-def test_grasp_slips_when_its_force_exceeds_the_limit(world, kinematics):
+def test_grasp_slips_when_its_force_exceeds_the_limit(kinematics):
+    config = WorldConfig(stance=GRASP_STANCE, posture_overrides=manipulation_posture(),
+                         robot_mode=RobotMode.KINEMATIC)  # the yank teleports the base
+    with DoorWorld(config) as world:
+        _yank_the_robot_off_the_handle(world, kinematics)
+
+
+def _yank_the_robot_off_the_handle(world, kinematics):
     reach_handle(world, kinematics, HAND)
     assert world.grasp(HAND, close=True).success
     world.set_base_pose(world.base_pose() @ translation([-0.15, 0.0, 0.0]))  # yank the robot back
@@ -96,7 +109,7 @@ def test_grasp_slips_when_its_force_exceeds_the_limit(world, kinematics):
 
 
 def test_a_slip_during_a_trajectory_ends_it_with_a_failure(kinematics):
-    with DoorWorld(WorldConfig(stance=GRASP_STANCE, grasp_break_force=60.0)) as world:
+    with DoorWorld(WorldConfig(stance=GRASP_STANCE, grasp_break_force=25.0)) as world:  # TALOS's true elbow: weak
         _pull_the_hand_off(world, kinematics)
 
 

@@ -1,4 +1,8 @@
-"""The robot in PyBullet agrees with Pinocchio; base teleporting; joint targets; head pitch."""
+"""The robot in PyBullet agrees with Pinocchio; base teleporting; joint targets; head pitch.
+
+The kinematic robot (fixed base) is teleported to random poses here; the physical robot's
+placement and standing are tested in test_sim_walking.py.
+"""
 
 import numpy as np
 import pytest
@@ -7,7 +11,7 @@ from door_contract.converters.footsteps import Foot
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import Side
 from door_sim_bridge.errors import SimulationError
-from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
+from door_sim_bridge.world import DoorWorld, RobotMode, StanceConfig, WorldConfig
 from door_contract.geometry import planar_pose
 
 STANCE = StanceConfig(distance=2.0, lateral_offset=0.35, yaw=0.4)
@@ -15,7 +19,7 @@ STANCE = StanceConfig(distance=2.0, lateral_offset=0.35, yaw=0.4)
 
 @pytest.fixture(scope="module")
 def world():
-    with DoorWorld(WorldConfig(stance=STANCE)) as sim:
+    with DoorWorld(WorldConfig(stance=STANCE, robot_mode=RobotMode.KINEMATIC)) as sim:
         yield sim
 
 
@@ -86,7 +90,7 @@ def test_joint_targets_are_validated_and_clipped(world):
 @pytest.mark.parametrize("profile", ["atlas_v4", "drc_hubo"])
 def test_the_seed_papers_robots_work_from_their_profiles(shared_data, profile):
     """Atlas v4 (head frame x forward) and DRC-HUBO (neck frame turned by pi) look forward-down."""
-    with DoorWorld(WorldConfig(robot_profile=profile, stance=STANCE)) as world:
+    with DoorWorld(WorldConfig(robot_profile=profile, stance=STANCE, robot_mode=RobotMode.KINEMATIC)) as world:
         kinematics = RobotKinematics(world.profile)
         for side in Side:
             ours, reference = world.tcp_pose(side), _pinocchio_tcp(world, kinematics, side)

@@ -51,6 +51,9 @@ class Execution(ABC):
         self.result: ExecutionResult | None = None
         self._start_time = 0.0
         self._event_cursor = 0
+        self.stop_reason: str | None = None  # set by stop(); the execution ends as soon as it safely can
+        if world.fallen:  # whatever it asks, nothing executes on a fallen robot
+            self._fell()
 
     @property
     def done(self) -> bool:
@@ -64,6 +67,9 @@ class Execution(ABC):
     def command(self) -> bool:
         """Set the robot's commands for the world's current time; True once finished."""
         if self.done:
+            return True
+        if self.world.fallen:
+            self._fell()
             return True
         if self.phase is ExecutionPhase.PENDING:
             self._start_time = self.world.time
@@ -88,6 +94,19 @@ class Execution(ABC):
         assert self.result is not None
         return self.result
 
+    def stop(self, reason: str) -> None:
+        """Stop on command (an empty message, a lost supervisor): the execution finishes with
+        STOPPED and ``reason`` — at once if it never started, else where the subclass says
+        the robot is safe to leave: :meth:`_on_stop` (trajectory: hold the current positions
+        now; footsteps: at the next stable stance). A no-op once finished."""
+        if self.done:
+            return
+        if self.phase is ExecutionPhase.PENDING:
+            self._finish(OutcomeStatus.STOPPED, reason)
+            return
+        self.stop_reason = reason
+        self._on_stop()
+
     def cancel(self, reason: str = "cancelled") -> ExecutionResult:
         """Stop where the robot is and finish with FAILURE (no-op once finished)."""
         if not self.done:
@@ -98,12 +117,20 @@ class Execution(ABC):
 
     # ------------------------------------------------------------------ for subclasses
     def _reject(self, reason: str) -> None:
+        if self.done:  # already ended (the robot had fallen)
+            return
         self.phase = ExecutionPhase.FINISHED
         self.result = ExecutionResult(OutcomeStatus.REJECTED, reason, 0.0)
 
     def _finish(self, status: OutcomeStatus, reason: str = "", slipped: bool = False) -> None:
         self.result = ExecutionResult(status, reason, self.elapsed, slipped)
         self.phase = ExecutionPhase.FINISHED
+
+    def _fell(self) -> None:
+        """The robot is down: end with FELL (a plan sent after the fall moves nothing)."""
+        elapsed = self.elapsed
+        self.phase = ExecutionPhase.FINISHED
+        self.result = ExecutionResult(OutcomeStatus.FELL, f"the robot fell: {self.world.fall_reason}", elapsed)
 
     def _slip_since_start(self) -> SimEvent | None:
         """The first grasp slip recorded since this execution started, if any."""
@@ -112,6 +139,11 @@ class Execution(ABC):
 
     def _on_start(self) -> None:
         """Hook called at the first command."""
+
+    def _on_stop(self) -> None:
+        """Hook of :meth:`stop` for a running execution; by default: hold now and finish."""
+        self._hold()
+        self._finish(OutcomeStatus.STOPPED, f"stopped: {self.stop_reason}")
 
     @abstractmethod
     def _command_now(self) -> None:

@@ -1,4 +1,4 @@
-"""Walking a footstep plan quasi-statically with the kinematically moved base.
+"""Walking a footstep plan: physically with the walking controller, or glided (kinematic).
 
 Validation first (any failure → REJECTED, nothing moves): a non-empty plan whose feet alternate
 left, right, … starting with the left foot (the contract's convention: even index = left),
@@ -8,7 +8,13 @@ current pose for the first step): forward/backward reach |dx| ≤ max_stride, la
 towards the swing foot's own side in [foot_width, foot_separation + max_side_step] (the legs
 never cross), |dyaw| ≤ max_turn.
 
-Motion: each footstep takes ``step_duration`` of simulated time. During it the base glides from
+Physical robot (the default): the world's walking controller walks the plan
+(:meth:`~door_sim_bridge.world.world.DoorWorld.walk`); the execution watches it — a fall ends
+it with FELL, a hand that slips or a link in the wall or frame with FAILURE (the walk stops at
+the next stable stance) — and judges where the soles ended against the plan's last two
+placements (``landing_tolerance``).
+
+Kinematic robot (fast unit tests): each footstep takes ``step_duration`` of simulated time. During it the base glides from
 the stance before the step to the stance after it — the midpoint of the two soles with their
 mean heading, at the nominal base height and offset — along a cosine-eased blend
 s(τ) = (1 - cos πτ) / 2 (zero velocity at both ends, as a quasi-static walker pauses in double
@@ -29,11 +35,13 @@ import numpy as np
 from door_contract.converters.footsteps import Foot, FootPlacement, foot_of_index
 from door_contract.payloads import OutcomeStatus
 from door_robot.profile import WalkingLimits
+from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution.base import Execution
 from door_contract.geometry import planar_pose, yaw_of
 from door_sim_bridge.world.world import DoorWorld
 
 LIMIT_TOLERANCE = 0.005  # m or rad: planners round to their grids; a few mm more is still a safe step
+LANDING_TOLERANCE = 0.05  # m: a physical walk ending farther than this from its plan is a FAILURE
 
 
 def wrap_angle(angle: float) -> float:
@@ -123,14 +131,71 @@ class FootstepExecution(Execution):
         self._index = 0
         self._from_pose = np.eye(4)
         self._to_pose = np.eye(4)
+        self._problem_reason = ""  # why the walk was stopped from inside (collision, slip)
+        self._slipped = False
 
     @property
     def steps_done(self) -> int:
         """Footsteps completed so far."""
-        return self._index
+        return self.world.balance.controller.steps_landed if self.world.physical else self._index
 
     def _on_start(self) -> None:
-        self._begin_step()
+        if not self.world.physical:
+            self._begin_step()
+            return
+        try:
+            self.world.walk(self.steps)
+        except SimulationError as error:
+            self._finish(OutcomeStatus.FAILURE, f"the walking controller refused the plan: {error}")
+
+    def _command_now(self) -> None:
+        if self.done:
+            return
+        problem = self._problem()
+        if problem is not None and not self.world.physical:
+            self._finish(OutcomeStatus.FAILURE, problem[0], slipped=problem[1])
+            return
+        if self.world.physical:
+            self._command_physical(problem)
+        else:
+            self._command_kinematic()
+
+    def _problem(self) -> tuple[str, bool] | None:
+        """Why the walk must stop (reason, slipped), or None."""
+        penetration, link = self.world.scene_contact()
+        if penetration > self.world.config.execution.collision_depth:
+            return (f"robot hit the wall or door frame during step {self.steps_done} ({link}, "
+                    f"{penetration:.3f} m deep)", False)
+        slip = self._slip_since_start()
+        if slip is not None:
+            return f"grasp slipped at t = {slip.time:.2f} s while walking", True
+        return None
+
+    def _command_physical(self, problem: tuple[str, bool] | None) -> None:
+        """Watch the walking controller; on a problem, stop at the next stable stance."""
+        if problem is not None and not self._problem_reason:
+            self._problem_reason, self._slipped = problem
+            self.world.stop_walking()
+        if self.world.walking:
+            return
+        if self._problem_reason:
+            self._finish(OutcomeStatus.FAILURE, self._problem_reason, slipped=self._slipped)
+        elif self.stop_reason is not None:
+            self._finish(OutcomeStatus.STOPPED, f"stopped after step {self.steps_done} of {len(self.steps)}: "
+                                                f"{self.stop_reason}")
+        else:
+            self._judge_landing()
+
+    def _judge_landing(self) -> None:
+        feet = self.world.foot_placements()
+        last = {step.foot: step for step in self.steps[-2:]}
+        errors = {foot: math.hypot(feet[foot].x - step.x, feet[foot].y - step.y) for foot, step in last.items()}
+        worst = max(errors, key=errors.__getitem__)
+        if errors[worst] > LANDING_TOLERANCE:
+            self._finish(OutcomeStatus.FAILURE, f"the {worst.value} sole ended {errors[worst]:.3f} m from its "
+                                                f"planned placement (tolerance {LANDING_TOLERANCE:.3f} m)")
+        else:
+            self._finish(OutcomeStatus.SUCCESS)
 
     def _begin_step(self) -> None:
         step = self.steps[self._index]
@@ -138,16 +203,7 @@ class FootstepExecution(Execution):
         self._feet[step.foot] = step
         self._to_pose = self.world.base_pose_for_feet(self._feet[Foot.LEFT], self._feet[Foot.RIGHT])
 
-    def _command_now(self) -> None:
-        penetration, link = self.world.scene_contact()
-        if penetration > self.world.config.execution.collision_depth:
-            self._finish(OutcomeStatus.FAILURE, f"robot hit the wall or door frame during step "
-                                                f"{self._index} ({link}, {penetration:.3f} m deep)")
-            return
-        slip = self._slip_since_start()
-        if slip is not None:
-            self._finish(OutcomeStatus.FAILURE, f"grasp slipped at t = {slip.time:.2f} s while walking", slipped=True)
-            return
+    def _command_kinematic(self) -> None:
         tau = (self.elapsed - self._index * self._step_duration) / self._step_duration
         if tau >= 1.0:
             self.world.set_base_pose(self._to_pose)
@@ -155,10 +211,21 @@ class FootstepExecution(Execution):
             if self._index == len(self.steps):
                 self._finish(OutcomeStatus.SUCCESS)
                 return
+            if self.stop_reason is not None:  # both feet down: the next stable stance
+                self._finish(OutcomeStatus.STOPPED, f"stopped after step {self._index} of {len(self.steps)}: "
+                                                    f"{self.stop_reason}")
+                return
             self._begin_step()
             tau = (self.elapsed - self._index * self._step_duration) / self._step_duration
         step_time = self.world.config.time_step / self._step_duration
         self.world.set_base_pose(blend_poses(self._from_pose, self._to_pose, smooth_blend(tau + step_time)))
 
+    def _on_stop(self) -> None:
+        """Walking stops at the next stable stance. Physical: the walking controller lands the
+        foot in the air and steps the other beside it; kinematic: the step in progress is
+        finished (that walk has both feet down only between steps). See ``_command_now``."""
+        self.world.stop_walking()
+
     def _hold(self) -> None:
-        """The base stays where it is (it only moves when commanded)."""
+        """Physical: end the walk at the next stable stance; kinematic: the base stays put."""
+        self.world.stop_walking()

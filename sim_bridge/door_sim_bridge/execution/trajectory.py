@@ -95,13 +95,18 @@ def _speed_problem(times: np.ndarray, names: tuple[str, ...], positions: np.ndar
 
 def validate_trajectory(times: np.ndarray, names: tuple[str, ...], positions: np.ndarray,
                         velocities: np.ndarray | None, limits: Mapping[str, JointLimit],
-                        current: Mapping[str, float], config: ExecutionConfig) -> str | None:
-    """The reason to reject the trajectory, or None when it may be executed."""
+                        current: Mapping[str, float], config: ExecutionConfig,
+                        commandable: frozenset[str] | None = None) -> str | None:
+    """The reason to reject the trajectory, or None when it may be executed (``commandable``:
+    the joints a trajectory may move, default all)."""
     problem = _shape_problem(times, names, positions, velocities)
     if problem is None:
         unknown = [name for name in names if name not in limits]
         if unknown:
             return f"unknown joint {unknown[0]!r} (not a movable joint of the robot)"
+        balanced = [name for name in names if commandable is not None and name not in commandable]
+        if balanced:
+            return f"{balanced[0]} is a leg joint: the walking controller drives the legs"
         problem = (_value_problem(times, names, positions, velocities)
                    or _limit_problem(names, positions, limits))
     if problem is not None:
@@ -145,7 +150,8 @@ class TrajectoryExecution(Execution):
             self._reject(f"trajectory is not numeric arrays of points × joints ({error})")
             return
         reason = validate_trajectory(self._times, self.joint_names, self._positions, self._velocities,
-                                     world.joint_limits(), world.joint_positions(), self._config)
+                                     world.joint_limits(), world.joint_positions(), self._config,
+                                     world.commandable_joints())
         if reason is not None:
             self._reject(reason)
 

@@ -8,7 +8,7 @@ doors open towards +x (details in :mod:`door_sim_bridge.world.door`). Start with
 
 from door_sim_bridge.world.camera import CameraFrame
 from door_sim_bridge.world.config import (CameraConfig, DoorConfig, DoorOpening, ExecutionConfig,
-                                          HingeSide, RobotVisuals, StanceConfig, WindConfig,
+                                          HingeSide, RobotMode, RobotVisuals, StanceConfig, WindConfig,
                                           WorldConfig)
 from door_sim_bridge.world.door import (HANDLE_JOINT, HINGE_JOINT, DoorGroundTruth, DoorPart,
                                         DoorState)
@@ -18,5 +18,5 @@ from door_sim_bridge.world.world import DoorWorld, EventKind, SimEvent
 
 __all__ = ["HANDLE_JOINT", "HINGE_JOINT", "CameraConfig", "CameraFrame", "DoorConfig", "DoorGroundTruth",
            "DoorOpening", "DoorPart", "DoorState", "DoorWorld", "EventKind", "ExecutionConfig",
-           "GraspResult", "HingeSide", "JointLimit", "JointStates", "RobotVisuals", "SimEvent",
+           "GraspResult", "HingeSide", "JointLimit", "RobotMode", "JointStates", "RobotVisuals", "SimEvent",
            "StanceConfig", "WindConfig", "WorldConfig"]

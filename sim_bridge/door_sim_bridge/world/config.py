@@ -17,6 +17,9 @@ from dataclasses import dataclass, field, fields
 from enum import Enum
 
 from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.validation import check_ranges, require as _require
+from door_sim_bridge.walking.gait import GaitOptions
+from door_sim_bridge.walking.stabilizer import StabilizerOptions
 
 Colour = tuple[float, float, float]
 """RGB in [0, 1]."""
@@ -48,23 +51,19 @@ class HingeSide(str, Enum):
         return 1.0 if self is HingeSide.LEFT else -1.0
 
 
+class RobotMode(str, Enum):
+    """How the robot is simulated."""
+
+    PHYSICAL = "physical"  # floating base on the floor, walking controller, can fall (the default)
+    KINEMATIC = "kinematic"  # base fixed to the world and glided along footsteps: fast unit tests only
+
+
 class RobotVisuals(str, Enum):
     """Which robot links the camera renders (TinyRenderer cost grows with mesh triangles)."""
 
     ALL = "all"
     ARMS = "arms"  # only links moved by the arm joints the two arms do not share
     NONE = "none"
-
-
-def _require(owner: str, name: str, value: object, low: float, high: float, unit: str = "") -> None:
-    """Raise :class:`SimulationError` unless ``value`` is a finite real number in [low, high]."""
-    suffix = f" {unit}" if unit else ""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise SimulationError(f"{owner}.{name} must be a number in [{low:.10g}, {high:.10g}]{suffix}, "
-                              f"got {value!r}")
-    if not math.isfinite(value) or not low <= value <= high:
-        raise SimulationError(f"{owner}.{name} = {value!r} is outside the allowed range "
-                              f"[{low:.10g}, {high:.10g}]{suffix}")
 
 
 def _require_int(owner: str, name: str, value: object, low: int, high: int) -> None:
@@ -96,12 +95,6 @@ def _require_direction(owner: str, name: str, value: object) -> None:
         raise SimulationError(f"{owner}.{name} = {value!r} has no direction (zero length)")
 
 
-def _check_ranges(owner: object, ranges: dict[str, tuple[float, float, str]]) -> None:
-    name = type(owner).__name__
-    for key, (low, high, unit) in ranges.items():
-        _require(name, key, getattr(owner, key), low, high, unit)
-
-
 @dataclass(frozen=True)
 class WindConfig:
     """Wind torque on the hinge: tau_w(t) = bias + amplitude * sin(2 pi frequency t + phase).
@@ -114,7 +107,7 @@ class WindConfig:
     bias: float = 0.0  # N·m
 
     def __post_init__(self) -> None:
-        _check_ranges(self, {"amplitude": (0.0, 100.0, "N·m"), "frequency": (0.0, 10.0, "Hz"),
+        check_ranges(self, {"amplitude": (0.0, 100.0, "N·m"), "frequency": (0.0, 10.0, "Hz"),
                              "bias": (-100.0, 100.0, "N·m")})
 
     @property
@@ -174,7 +167,7 @@ class DoorConfig:
     def __post_init__(self) -> None:
         _require_enum("DoorConfig", "opening", self.opening, DoorOpening)
         _require_enum("DoorConfig", "hinge_side", self.hinge_side, HingeSide)
-        _check_ranges(self, _DOOR_RANGES)
+        check_ranges(self, _DOOR_RANGES)
         self._check_relations()
         self._check_colours()
         if not isinstance(self.wind, WindConfig):
@@ -221,7 +214,7 @@ class StanceConfig:
     yaw: float = 0.0  # rad relative to facing the door (+x)
 
     def __post_init__(self) -> None:
-        _check_ranges(self, {"distance": (0.3, 8.0, "m"), "lateral_offset": (-3.0, 3.0, "m"),
+        check_ranges(self, {"distance": (0.3, 8.0, "m"), "lateral_offset": (-3.0, 3.0, "m"),
                              "yaw": (-math.pi, math.pi, "rad")})
 
 
@@ -252,7 +245,7 @@ class CameraConfig:
         _require_direction("CameraConfig", "light_direction", self.light_direction)
         _require_int("CameraConfig", "width", self.width, 16, 4096)
         _require_int("CameraConfig", "height", self.height, 16, 4096)
-        _check_ranges(self, {"vertical_fov_deg": (10.0, 120.0, "deg"), "near": (0.01, 1.0, "m"),
+        check_ranges(self, {"vertical_fov_deg": (10.0, 120.0, "deg"), "near": (0.01, 1.0, "m"),
                              "frame_rate_hz": (0.1, 60.0, "Hz"),
                              "depth_noise_coefficient": (0.0, 0.1, "1/m"),
                              "colour_noise_sigma": (0.0, 50.0, "levels"),
@@ -273,10 +266,26 @@ class ExecutionConfig:
     collision_depth: float = 0.01  # m of penetration into the wall or frame that stops walking
 
     def __post_init__(self) -> None:
-        _check_ranges(self, {"settle_time": (0.0, 5.0, "s"), "goal_tolerance": (1e-4, 1.0, "rad"),
+        check_ranges(self, {"settle_time": (0.0, 5.0, "s"), "goal_tolerance": (1e-4, 1.0, "rad"),
                              "start_tolerance": (1e-4, 3.2, "rad"),
                              "velocity_limit_scale": (0.1, 10.0, ""),
                              "step_duration": (0.05, 10.0, "s"), "collision_depth": (0.0, 0.5, "m")})
+
+
+@dataclass(frozen=True)
+class FallConfig:
+    """When the physical robot counts as fallen (checked every physics step).
+
+    A humanoid standing or walking keeps its base near its nominal height and nearly upright;
+    below ``height_fraction`` × the nominal base height, or tilted more than ``max_tilt``, it
+    has fallen, and it stays fallen: nothing executes any more.
+    """
+
+    height_fraction: float = 0.6  # × the profile's base height
+    max_tilt: float = 0.6  # rad between the base's z axis and the vertical
+
+    def __post_init__(self) -> None:
+        check_ranges(self, {"height_fraction": (0.1, 0.95, ""), "max_tilt": (0.1, 1.5, "rad")})
 
 
 @dataclass(frozen=True)
@@ -294,7 +303,12 @@ class WorldConfig:
     grasp_distance: float = 0.02  # m, TCP to handle grasp point, to close a grasp
     grasp_break_force: float = 200.0  # N, grip: constraint force beyond which the hand slips
     grasp_break_steps: int = 3  # consecutive physics steps above the limit before it slips
-    joint_force_scale: float = 2.0  # x URDF effort limit given to each position motor
+    joint_force_scale: float = 1.0  # x URDF effort limit given to each position motor
+    robot_mode: RobotMode = RobotMode.PHYSICAL
+    gait: GaitOptions = field(default_factory=GaitOptions)
+    stabilizer: StabilizerOptions = field(default_factory=StabilizerOptions)
+    fall: FallConfig = field(default_factory=FallConfig)
+    floor_friction: float = 1.0  # Coulomb coefficient between soles and floor
     posture_overrides: tuple[tuple[str, float], ...] = ()  # (joint, rad) over the nominal posture
 
     def __post_init__(self) -> None:
@@ -302,15 +316,17 @@ class WorldConfig:
             raise SimulationError(f"WorldConfig.robot_profile must be a profile name, "
                                   f"got {self.robot_profile!r}")
         for name, kind in (("door", DoorConfig), ("stance", StanceConfig), ("camera", CameraConfig),
-                           ("execution", ExecutionConfig)):
+                           ("execution", ExecutionConfig), ("gait", GaitOptions),
+                           ("stabilizer", StabilizerOptions), ("fall", FallConfig)):
             if not isinstance(getattr(self, name), kind):
                 raise SimulationError(f"WorldConfig.{name} must be a {kind.__name__}")
         _require_int("WorldConfig", "seed", self.seed, 0, 2**31 - 1)
         _require_int("WorldConfig", "grasp_break_steps", self.grasp_break_steps, 1, 1000)
-        _check_ranges(self, {"physics_rate": (60.0, 2000.0, "Hz"), "gravity": (0.0, 20.0, "m/s²"),
+        check_ranges(self, {"physics_rate": (60.0, 2000.0, "Hz"), "gravity": (0.0, 20.0, "m/s²"),
                              "grasp_distance": (0.001, 0.2, "m"),
                              "grasp_break_force": (1.0, 1e5, "N"),
-                             "joint_force_scale": (0.1, 100.0, "")})
+                             "joint_force_scale": (0.1, 100.0, ""), "floor_friction": (0.05, 3.0, "")})
+        _require_enum("WorldConfig", "robot_mode", self.robot_mode, RobotMode)
         self._check_overrides()
 
     def _check_overrides(self) -> None:

@@ -1,11 +1,15 @@
-"""The humanoid in PyBullet: a kinematically moved base and position-controlled joints.
+"""The humanoid in PyBullet: position-controlled joints on a floating or a fixed base.
 
-Quasi-static model (seed 001 Sec. II): the base is fixed to the world and teleported with
-``resetBasePositionAndOrientation`` along the footstep plan; it therefore passes through
-walls, and the footstep planner must keep clearance. Every revolute joint is driven by
-PyBullet's position motor (a velocity constraint solved with the contacts, limited to
-``joint_force_scale`` × the URDF effort), so an arm blocked by the door stalls instead of
-passing through it. Gravity acts on the links; the motors carry it.
+* **Physical** (the default, :class:`~door_sim_bridge.world.config.RobotMode`): the robot is a
+  free body standing on the floor, loaded from the profile's URDF with box soles
+  (:mod:`door_sim_bridge.world.robot_urdf`); the walking controller drives every joint and
+  the robot can fall.
+* **Kinematic** (fast unit tests only): the base is fixed to the world and teleported with
+  ``resetBasePositionAndOrientation``; it passes through walls and cannot fall.
+
+Every movable joint is driven by PyBullet's position motor (a velocity constraint solved
+with the contacts, limited to ``joint_force_scale`` × the URDF effort), so an arm blocked by
+the door stalls instead of passing through it. Gravity acts on the links.
 
 PyBullet reports a base's pose at its centre of mass; the URDF (and Pinocchio) frame of the
 base differs by the base's inertial offset, which this class removes, so :meth:`base_pose` is
@@ -15,8 +19,10 @@ the URDF base frame, as in :mod:`door_robot.kinematics`.
 from __future__ import annotations
 
 import math
+import tempfile
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 import pybullet
@@ -25,6 +31,7 @@ from door_robot.profile import RobotProfile, Side
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import RobotVisuals
+from door_sim_bridge.world.robot_urdf import box_sole_urdf
 from door_sim_bridge.world.transforms import invert, pose_matrix, position_quaternion, translation
 
 MOVABLE_JOINT_TYPES = (pybullet.JOINT_REVOLUTE, pybullet.JOINT_PRISMATIC)
@@ -55,13 +62,15 @@ class JointStates:
 
 
 class SimRobot:
-    """One robot profile loaded into a PyBullet client with a fixed, kinematically moved base."""
+    """One robot profile loaded into a PyBullet client (floating or fixed base)."""
 
-    def __init__(self, client: PhysicsClient, profile: RobotProfile, force_scale: float) -> None:
+    def __init__(self, client: PhysicsClient, profile: RobotProfile, force_scale: float,
+                 floating: bool = True) -> None:
         self._client = client
         self.profile = profile
-        self.body = client.loadURDF(str(profile.urdf_path), useFixedBase=True,
-                                    flags=pybullet.URDF_USE_INERTIA_FROM_FILE)
+        self.floating = floating
+        self.urdf_text = box_sole_urdf(profile) if floating else profile.urdf_path.read_text()
+        self.body = self._load(floating)
         infos = [client.getJointInfo(self.body, j) for j in range(client.getNumJoints(self.body))]
         self._parents = {j: info[16] for j, info in enumerate(infos)}
         self._links = {info[12].decode(): j for j, info in enumerate(infos)}
@@ -77,6 +86,20 @@ class SimRobot:
         dynamics = client.getDynamicsInfo(self.body, -1)
         self._base_inertial = pose_matrix(dynamics[3], dynamics[4])
         self._targets = np.zeros(len(self.joint_names))
+        self._wrists: dict[Side, tuple[int, float]] = {}
+        if floating:  # PyBullet's default velocity motors would hold every joint still
+            client.setJointMotorControlArray(self.body, self._indices.tolist(), pybullet.VELOCITY_CONTROL,
+                                             forces=[0.0] * len(self._indices))
+            self.enable_wrist_sensors()
+
+    def _load(self, floating: bool) -> int:
+        flags = pybullet.URDF_USE_INERTIA_FROM_FILE
+        if not floating:
+            return self._client.loadURDF(str(self.profile.urdf_path), useFixedBase=True, flags=flags)
+        with tempfile.TemporaryDirectory(prefix="door_robot_") as folder:
+            path = Path(folder) / f"{self.profile.name}_box_soles.urdf"
+            path.write_text(self.urdf_text)
+            return self._client.loadURDF(str(path), useFixedBase=False, flags=flags)
 
     # ------------------------------------------------------------------ names
     def link_index(self, link: str) -> int:
@@ -139,6 +162,41 @@ class SimRobot:
     def joint_targets(self) -> dict[str, float]:
         return dict(zip(self.joint_names, self._targets.tolist()))
 
+    def wrist_joint(self, side: Side) -> str:
+        """The movable joint nearest above the ``side`` hand's TCP parent frame."""
+        names = {self.joint_link_index(n): n for n in self.joint_names}
+        for index in self.chain_to_root(self.link_index(self.profile.arm(side).tcp_parent_frame)):
+            if index in names:
+                return names[index]
+        raise SimulationError(f"{self.profile.name}: no joint above {self.profile.arm(side).tcp_parent_frame}")
+
+    def enable_wrist_sensors(self) -> None:
+        """Six-axis force/torque sensing at both wrists (PyBullet's joint reaction forces)."""
+        for side in self.profile.arms:
+            index = self.joint_link_index(self.wrist_joint(side))
+            self._client.enableJointForceTorqueSensor(self.body, index, True)
+            below = self.descendants(index)
+            mass = sum(self._client.getDynamicsInfo(self.body, link)[0] for link in below)
+            self._wrists[side] = (index, mass)
+
+    def wrist_force(self, side: Side, gravity: float) -> np.ndarray:
+        """External force (N, world axes) on the ``side`` hand from its wrist sensor.
+
+        The sensor reports the force the arm exerts on the hand (the wrist's child link), in
+        that link's centre-of-mass frame. Quasi-statically it balances the hand's weight and
+        whatever holds the hand: F_ext = −R·f_sensor + m_hand·g·ẑ (the gravity compensation
+        real wrist sensors get from the hand's known mass).
+        """
+        index, mass = self._wrists[side]
+        reaction = np.array(self._client.getJointState(self.body, index)[2][:3])
+        return -(self.link_com_pose(index)[:3, :3] @ reaction) + np.array([0.0, 0.0, mass * gravity])
+
+    def go_limp(self, damping_fraction: float = 0.05) -> None:
+        """Motors off but for a little damping (a fallen robot's joints give way)."""
+        self._client.setJointMotorControlArray(self.body, self._indices.tolist(), pybullet.VELOCITY_CONTROL,
+                                               targetVelocities=[0.0] * len(self._indices),
+                                               forces=(damping_fraction * self._forces).tolist())
+
     def joint_states(self) -> JointStates:
         states = self._client.getJointStates(self.body, self._indices.tolist())
         return JointStates(self.joint_names, np.array([s[0] for s in states]),
@@ -154,7 +212,8 @@ class SimRobot:
         return pose_matrix(position, orientation) @ invert(self._base_inertial)
 
     def set_base_pose(self, pose: np.ndarray) -> None:
-        """Teleport the base (URDF frame) to ``pose``; joint angles are unchanged."""
+        """Teleport the base (URDF frame) to ``pose``; joint angles are unchanged (placing the
+        robot before a run; the world refuses it for the physical robot afterwards)."""
         position, orientation = position_quaternion(np.asarray(pose) @ self._base_inertial)
         self._client.resetBasePositionAndOrientation(self.body, position, orientation)
 

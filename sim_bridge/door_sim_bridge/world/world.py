@@ -3,13 +3,20 @@
 ``DoorWorld`` owns one PyBullet client in DIRECT mode. Conventions (see
 :mod:`door_sim_bridge.world.door` for the door's): world frame = ``odom``; the robot starts
 on the x < 0 side at x = -stance.distance, y = stance.lateral_offset, yawed by stance.yaw from
-facing +x, its soles on the floor (base at ``profile.base_height``), joints in the profile's
-nominal posture with the head pitched down by ``camera.head_pitch``.
+facing +x, its soles on the floor, joints in the profile's nominal posture with the head
+pitched down by ``camera.head_pitch``.
+
+The robot is **physical** by default (:class:`~door_sim_bridge.world.config.RobotMode`): a
+floating base standing on a collision floor, whose walking controller
+(:mod:`door_sim_bridge.world.balance`) keeps it balanced every step, walks footstep plans
+(:meth:`walk`) and can fall; nothing teleports it once placed. The **kinematic** robot (fixed
+base, glided along footsteps by the execution) remains for fast unit tests.
 
 One :meth:`DoorWorld.step` is one physics step of 1/physics_rate s: the door's latch is
 updated and its spring, damper and wind torques applied (PyBullet clears torques and external
 forces after every step, so they are re-applied each time), test forces are applied, the
-solver runs, then every grasp's constraint force is checked for a slip.
+balance controller sets the joint targets, the solver runs, then every grasp's constraint
+force is checked for a slip and the robot for a fall.
 """
 
 from __future__ import annotations
@@ -29,12 +36,18 @@ from door_robot.profile import Side, load_profile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.world.camera import CameraFrame, HeadCamera, optical_offset
 from door_sim_bridge.world.client import PhysicsClient
-from door_sim_bridge.world.config import StanceConfig, WorldConfig
+from door_sim_bridge.world.balance import BalanceLoop
+from door_sim_bridge.world.config import RobotMode, StanceConfig, WorldConfig
+from door_sim_bridge.world.hardware import make_floor
+from door_sim_bridge.world.robot_urdf import sole_placement_link
 from door_sim_bridge.world.door import DoorGroundTruth, DoorPart, DoorState, LatchEvent, SimDoor
 from door_sim_bridge.world.grasp import GraspController, GraspResult
 from door_sim_bridge.world.robot import JointLimit, JointStates, SimRobot
 from door_contract.geometry import planar_pose, yaw_of
 from door_sim_bridge.world.transforms import invert, is_rigid
+
+
+SOLE_CLEARANCE = 0.0005  # m between the lowest sole and the floor when the robot is placed
 
 
 class EventKind(str, Enum):
@@ -44,6 +57,7 @@ class EventKind(str, Enum):
     GRASP_SLIPPED = "grasp_slipped"
     LATCH_RELEASED = "latch_released"
     LATCH_ENGAGED = "latch_engaged"
+    FELL = "fell"
 
 
 @dataclass(frozen=True)
@@ -80,6 +94,7 @@ class DoorWorld:
         self._steps = 0
         self._events: list[SimEvent] = []
         self._forces: list[tuple[_ExternalForce, int]] = []
+        self._robot_forces: list[tuple[str, np.ndarray, int]] = []
         self._stance_offset = invert(self._feet_midpoint()) @ self.robot.base_pose()
 
     def _build(self) -> None:
@@ -88,7 +103,11 @@ class DoorWorld:
         self._configure_physics()
         phase = float(np.random.default_rng(wind_seed).uniform(0.0, 2.0 * math.pi))
         self.door = SimDoor(self._client, self.config.door, phase)
-        self.robot = SimRobot(self._client, self.profile, self.config.joint_force_scale)
+        physical = self.config.robot_mode is RobotMode.PHYSICAL
+        self._floor = make_floor(self._client, self.config.floor_friction) if physical else None
+        self.robot = SimRobot(self._client, self.profile, self.config.joint_force_scale, floating=physical)
+        if physical:
+            self._set_sole_friction(self.config.floor_friction)
         camera_frame = self.profile.head_camera_frame
         self._optical = optical_offset(self.robot, camera_frame)  # in the zero posture
         optical_x = (self.robot.link_pose(camera_frame) @ self._optical)[:3, 0]
@@ -99,6 +118,13 @@ class DoorWorld:
         self.robot.hide_links(self.config.camera.robot_visuals)
         self._grasps = GraspController(self._client, self.robot, self.door, self.config.grasp_distance,
                                        self.config.grasp_break_force, self.config.grasp_break_steps)
+        self.balance = (BalanceLoop(self._client, self.robot, self._floor, self.door.body, self.config,
+                                    self._grasps.holding) if physical else None)
+
+    def _set_sole_friction(self, friction: float) -> None:
+        for link in self.profile.feet.values():
+            carrier = sole_placement_link(self.robot, link)
+            self._client.changeDynamics(self.robot.body, carrier, lateralFriction=friction)
 
     def _configure_physics(self) -> None:
         self._client.setPhysicsEngineParameter(fixedTimeStep=self.config.time_step, useSplitImpulse=0)
@@ -106,9 +132,16 @@ class DoorWorld:
         self._client.setAdditionalSearchPath(str(cmeel_share_dir()))
 
     def _place_robot(self, stance: StanceConfig) -> None:
-        self.robot.set_base_pose(planar_pose(-stance.distance, stance.lateral_offset, stance.yaw,
-                                        self.profile.base_height))
+        """Base at the stance (at the profile's base height), joints in the initial posture;
+        the physical robot is then lowered or raised until its lowest sole is on the floor."""
+        pose = planar_pose(-stance.distance, stance.lateral_offset, stance.yaw, self.profile.base_height)
+        self.robot.set_base_pose(pose)
         self.robot.reset_joints(self._initial_posture())
+        if not self.robot.floating:
+            return
+        lowest = min(self.robot.link_pose(link)[2, 3] for link in self.profile.feet.values())
+        pose[2, 3] -= lowest - SOLE_CLEARANCE
+        self.robot.set_base_pose(pose)
 
     def _initial_posture(self) -> dict[str, float]:
         """Zero (clipped into the limits), then the profile's nominal posture with its walking
@@ -126,7 +159,9 @@ class DoorWorld:
 
     def reset_robot(self, stance: StanceConfig | None = None) -> None:
         """Open both hands and put the robot back at ``stance`` (default: the configured one)
-        in its initial posture; the door and the clock are left as they are."""
+        in its initial posture; the door and the clock are left as they are. Kinematic robot
+        only: the physical one is never teleported."""
+        self._require_kinematic("reset_robot")
         for side in self.profile.arms:
             if self.holding(side):
                 self.grasp(side, close=False)
@@ -165,11 +200,17 @@ class DoorWorld:
             kind = EventKind.LATCH_RELEASED if latch is LatchEvent.RELEASED else EventKind.LATCH_ENGAGED
             self._record(kind)
         self._apply_external_forces()
+        self._apply_robot_forces()
+        if self.balance is not None:
+            self.balance.control()
         self._client.stepSimulation()
         self._steps += 1
         for side in self._grasps.check_slips():
             self._record(EventKind.GRASP_SLIPPED, f"grasp force above {self.config.grasp_break_force:g} N",
                          side)
+        fall = self.balance.check_fall() if self.balance is not None else None
+        if fall is not None:
+            self._record(EventKind.FELL, fall)
 
     def _record(self, kind: EventKind, detail: str = "", side: Side | None = None) -> None:
         self._events.append(SimEvent(self.time, kind, detail, side))
@@ -190,21 +231,109 @@ class DoorWorld:
         return self.robot.joint_states()
 
     def set_joint_targets(self, targets: Mapping[str, float]) -> None:
-        """Position targets by name (clipped to the limits); SimulationError on unknown or NaN."""
-        self.robot.set_joint_targets(targets)
+        """Position targets by name (clipped to the limits); SimulationError on unknown or NaN,
+        and, for the physical robot, on leg joints (its balance drives them)."""
+        if self.balance is None:
+            self.robot.set_joint_targets(targets)
+            return
+        values = np.array([float(v) for v in targets.values()])
+        if not np.all(np.isfinite(values)):
+            raise SimulationError("joint targets contain NaN or infinity")
+        self.balance.set_upper_body({name: min(max(float(v), self.robot.limits[name].lower),
+                                               self.robot.limits[name].upper) if name in self.robot.limits
+                                     else float(v) for name, v in targets.items()})
 
     def joint_targets(self) -> dict[str, float]:
         return self.robot.joint_targets()
+
+    def commandable_joints(self) -> frozenset[str]:
+        """Joints a trajectory may move: all of them on the kinematic robot; the upper body
+        (torso, arms, neck, grippers) on the physical one."""
+        if self.balance is None:
+            return frozenset(self.robot.joint_names)
+        return frozenset(self.balance.controller.joints.upper_body)
 
     def base_pose(self) -> np.ndarray:
         """4×4 base frame (profile.base_frame) in odom."""
         return self.robot.base_pose()
 
     def set_base_pose(self, pose: np.ndarray) -> None:
-        """Teleport the base (kinematic walking); SimulationError unless a finite rigid transform."""
+        """Teleport the base (kinematic walking); SimulationError unless a finite rigid transform,
+        and always for the physical robot."""
+        self._require_kinematic("set_base_pose")
         if not is_rigid(pose):
             raise SimulationError("base pose must be a finite rigid 4×4 transform")
         self.robot.set_base_pose(pose)
+
+    # ------------------------------------------------------------------ the physical robot
+    @property
+    def physical(self) -> bool:
+        return self.balance is not None
+
+    def _require_kinematic(self, what: str) -> None:
+        if self.balance is not None:
+            raise SimulationError(f"{what} would teleport the physical robot (kinematic robot only)")
+
+    def walk(self, steps: Sequence[FootPlacement]) -> float:
+        """Start walking ``steps`` with the walking controller; the walk's duration (s).
+
+        SimulationError for the kinematic robot (its executions glide it), when fallen or
+        already walking, or when no walking pattern exists for the steps.
+        """
+        if self.balance is None:
+            raise SimulationError("the kinematic robot does not walk (FootstepExecution glides it)")
+        if self.fallen:
+            raise SimulationError(f"the robot has fallen ({self.balance.fall})")
+        return self.balance.walk(steps)
+
+    def stop_walking(self) -> None:
+        """End a walk at the next stable stance (the foot in the air lands first)."""
+        if self.balance is not None:
+            self.balance.stop_walking()
+
+    @property
+    def walking(self) -> bool:
+        return self.balance is not None and self.balance.walking
+
+    @property
+    def fallen(self) -> bool:
+        return self.balance is not None and self.balance.fall is not None
+
+    @property
+    def fall_reason(self) -> str:
+        return "" if self.balance is None or self.balance.fall is None else self.balance.fall
+
+    def push_robot(self, link: str, force: Sequence[float], steps: int) -> None:
+        """Shove the robot: ``force`` (N, odom axes) at ``link``'s centre of mass for ``steps``
+        physics steps (a disturbance; the stabiliser does not measure it)."""
+        vector = np.asarray(force, dtype=float)
+        if vector.shape != (3,) or not np.all(np.isfinite(vector)):
+            raise SimulationError("robot push force must be a finite 3-vector")
+        if not isinstance(steps, int) or steps < 1:
+            raise SimulationError(f"robot push steps must be a positive integer, got {steps!r}")
+        self.robot.link_index(link)
+        self._robot_forces.append((link, vector, steps))
+
+    def _apply_robot_forces(self) -> None:
+        remaining = []
+        for link, force, steps in self._robot_forces:
+            index = self.robot.link_index(link)
+            point = self.robot.link_com_pose(index)[:3, 3]
+            self._client.applyExternalForce(self.robot.body, index, force.tolist(), point.tolist(),
+                                            pybullet.WORLD_FRAME)
+            if steps > 1:
+                remaining.append((link, force, steps - 1))
+        self._robot_forces = remaining
+
+    def centre_of_mass(self) -> np.ndarray:
+        """Whole-body CoM (odom, m): PyBullet's link masses and poses."""
+        total, weighted = 0.0, np.zeros(3)
+        for index in [-1, *range(self._client.getNumJoints(self.robot.body))]:
+            mass = self._client.getDynamicsInfo(self.robot.body, index)[0]
+            if mass > 0.0:
+                total += mass
+                weighted += mass * self.robot.link_com_pose(index)[:3, 3]
+        return weighted / total
 
     def tcp_pose(self, side: Side) -> np.ndarray:
         """4×4 tool-centre point of the ``side`` hand in odom."""

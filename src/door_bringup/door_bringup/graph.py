@@ -18,6 +18,7 @@ from rclpy.node import Node
 from door_bringup.graph_spec import GRAPH
 from door_bringup.processes import ProcessSupervisor
 from door_bringup.workspace import Workspace, repository_root
+from door_contract.network import keep_discovery_local
 
 
 def wait_for_nodes(probe: Node, names: set[str], timeout_s: float,
@@ -36,6 +37,7 @@ def wait_for_nodes(probe: Node, names: set[str], timeout_s: float,
 
 def check_graph(workspace: Workspace, timeout_s: float, log_dir: Path | None) -> int:
     supervisor = ProcessSupervisor(workspace, log_dir)
+    keep_discovery_local()  # this runner's own probe participant too
     rclpy.init()
     probe = rclpy.create_node("door_graph_probe")
     try:

@@ -46,10 +46,13 @@ def _topic(args: list[str]) -> int:
     from door_bringup.bags.player import qos_for
     from door_contract.topics import interface_class
 
+    from door_contract.network import keep_discovery_local
+
     verb, rest = args[0], args[1:]
     count = 1
     if rest and rest[0] in ("--times", "--count"):
         count, rest = int(rest[1]), rest[2:]
+    keep_discovery_local()
     rclpy.init()
     node = rclpy.create_node("ros2cli_stand_in")
     try:

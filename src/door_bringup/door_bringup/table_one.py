@@ -55,9 +55,14 @@ def phase_rows(reports: Iterable[dict]) -> list[PhaseRow]:
     return rows
 
 
+CLOCKS = "planning and operator time: wall clock; moving time: the robot's clock (sim time) — docs/CLOCKS.md"
+
+
 def format_table(rows: list[PhaseRow], overall_runs: int, overall_successes: int, title: str) -> str:
-    """Markdown table: phase | success | planning time | moving time | operator time."""
-    lines = [f"### {title}", "", "| phase | success | planning time | moving time | operator time |",
+    """Markdown table: phase | success | planning time | moving time | operator time, and the
+    clock each column is measured on."""
+    lines = [f"### {title}", "", f"({CLOCKS})", "",
+             "| phase | success | planning time (wall) | moving time (robot) | operator time (wall) |",
              "|---|---|---|---|---|"]
     for row in rows:
         lines.append(f"| {row.phase} | {row.successes}/{row.runs} ({100 * row.success_rate:.0f} %) | "

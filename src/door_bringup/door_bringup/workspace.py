@@ -19,8 +19,24 @@ class WorkspaceError(RuntimeError):
 
 
 def repository_root() -> Path:
-    """This checkout (src/door_bringup/door_bringup → three levels up), or $DOOR_WORKSPACE."""
-    return Path(os.environ.get("DOOR_WORKSPACE", Path(__file__).resolve().parents[3]))
+    """$DOOR_WORKSPACE, else the checkout this module is in — from the sources or from the
+    colcon install inside the checkout (``ros_ws/install/door_bringup/lib/…``)."""
+    if "DOOR_WORKSPACE" in os.environ:
+        return Path(os.environ["DOOR_WORKSPACE"])
+    return find_repository_root(Path(__file__))
+
+
+def find_repository_root(start: Path) -> Path:
+    """The nearest folder above ``start`` holding ``ros_ws/src`` and ``params/`` (the checkout).
+
+    A fixed number of levels up was right for the sources only: from the installed copy it
+    named ``ros_ws/install/door_bringup/lib`` (issue #12: ``door_graph --check`` failed).
+    """
+    for folder in start.resolve().parents:
+        if (folder / "ros_ws" / "src").is_dir() and (folder / "params").is_dir():
+            return folder
+    raise WorkspaceError(f"no checkout (a folder with ros_ws/src and params/) above {start}; "
+                         f"set DOOR_WORKSPACE")
 
 
 @dataclass(frozen=True)
@@ -64,7 +80,9 @@ class Workspace:
         site = f"lib/python{sys.version_info.major}.{sys.version_info.minor}/site-packages"
         python_paths = [str(p / site) for p in prefixes]
         env["PYTHONPATH"] = os.pathsep.join(python_paths + [v for v in [env.get("PYTHONPATH")] if v])
-        env["AMENT_PREFIX_PATH"] = os.pathsep.join([str(p) for p in prefixes] + [sys.prefix])
+        # existing entries stay (a real install's /opt/ros/jazzy: type support is found through it)
+        ament = [str(p) for p in prefixes] + [sys.prefix] + [v for v in env.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if v]
+        env["AMENT_PREFIX_PATH"] = os.pathsep.join(dict.fromkeys(ament))
         env.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
         env.setdefault("FASTRTPS_DEFAULT_PROFILES_FILE", str(self.params / "fastdds_profile.xml"))
         env.setdefault("DOOR_PARAMS_DIR", str(self.params))

@@ -8,7 +8,10 @@ frames (a sequential vote: confirmed as soon as enough agree precisely, whatever
 the head search they came from); the consensus goes out as ``/door/estimate``,
 ``/door/handle_pose`` and markers.
 Bad frames (empty, wrong encoding, size mismatch, no valid depth, inconsistent
-CameraInfo, a scribble outside the image) are logged and counted; nothing is published.
+CameraInfo) are logged and counted; nothing is published. A frame that never completes
+(e.g. no CameraInfo) is reported on /diagnostics with the stream it lacked. A scribble is
+checked on arrival (:mod:`door_detection.scribble`): a bad one is refused at once and
+automatic detection goes on.
 """
 
 from __future__ import annotations
@@ -29,8 +32,10 @@ from door_contract.converters.image import array_to_image, depth_to_metres, imag
 from door_contract.converters.pose import matrix_to_pose_stamped, pose_to_matrix
 from door_contract.errors import ContractError
 from door_contract.frames import Frame
-from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
+from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
+                                        create_contract_subscription,
                                         declare_parameters, run_node)
+from door_contract.parameters import require_ordered
 from door_contract.payloads import encode
 from door_contract.stamps import from_time_msg
 from door_contract.topics import Topics
@@ -38,8 +43,10 @@ from door_detection.automatic import detect_automatic
 from door_detection.markers import door_markers
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
+from door_detection.errors import DetectionError
 from door_detection.parameters import DETECTOR_PARAMETERS, NODE_NAME
 from door_detection.payload import contract_estimate
+from door_detection.scribble import scribble_problem
 from door_detection.voting import Voter
 
 STREAMS = ("color", "depth", "info", "pose")
@@ -52,12 +59,15 @@ class DoorDetectorNode(Node):
         super().__init__(NODE_NAME)
         p = declare_parameters(self, DETECTOR_PARAMETERS)
         self.parameters = p
-        self.options = DetectionOptions(door_width_min=p["door_width_min"], door_width_max=p["door_width_max"],
-                                        **{name: p[name] for name in VOTE_PARAMETERS})
+        require_ordered(p, "door_width_min", "door_width_max")
+        with as_parameter_error("detection options", DetectionError):
+            self.options = DetectionOptions(door_width_min=p["door_width_min"], door_width_max=p["door_width_max"],
+                                            **{name: p[name] for name in VOTE_PARAMETERS})
         self.voter = Voter(self.options)
         self.pending: OrderedDict[float, dict] = OrderedDict()  # stamp → {stream: message}
         self.scribble: tuple[float, np.ndarray] | None = None  # (wall time, N×2 pixels)
-        self.frames = self.rejected = 0
+        self.frames = self.rejected = self.incomplete = 0
+        self.image_size: tuple[int, int] | None = None  # (width, height) of the last CameraInfo
         self.heartbeat = Heartbeat(self)
         pub = lambda topic: create_contract_publisher(self, topic)
         self.estimate_pub, self.handle_pub = pub(Topics.DOOR_ESTIMATE), pub(Topics.HANDLE_POSE)
@@ -72,9 +82,12 @@ class DoorDetectorNode(Node):
 
     # ------------------------------------------------------------------ inputs
     def _on_scribble(self, msg: PolygonStamped) -> None:
-        pixels = np.array([[p.x, p.y] for p in msg.polygon.points], dtype=float)
-        if pixels.size == 0 or not np.all(np.isfinite(pixels)):
-            self.get_logger().warning("scribble ignored: it has no finite points")
+        pixels = np.array([[p.x, p.y] for p in msg.polygon.points], dtype=float).reshape(-1, 2)
+        problem = scribble_problem(pixels, *(self.image_size or (None, None)))
+        if problem:
+            note = f"scribble refused: {problem}; automatic detection goes on"
+            self.get_logger().warning(note)
+            self.heartbeat.update(Health.WARN, note, frames=self.frames, rejected=self.rejected)
             return
         self.scribble = (time.monotonic(), pixels)
         self.voter.reset()  # the operator's word replaces what was voted so far
@@ -85,13 +98,25 @@ class DoorDetectorNode(Node):
     def _on_stream(self, stream: str, msg: Image | CameraInfo | PoseStamped) -> None:
         stamp = from_time_msg(msg.header.stamp)
         key = next((k for k in self.pending if abs(k - stamp) <= self.parameters["sync_tolerance"]), stamp)
+        if stream == "info":
+            self.image_size = (int(msg.width), int(msg.height))
         frame = self.pending.setdefault(key, {})
         frame[stream] = msg
         if len(frame) == len(STREAMS):
             del self.pending[key]
             self._process(key, frame)
-        while len(self.pending) > 20:  # drop incomplete old frames
-            self.pending.popitem(last=False)
+        while len(self.pending) > 20:  # drop incomplete old frames, saying what they lacked
+            old_stamp, parts = self.pending.popitem(last=False)
+            self._report_incomplete(old_stamp, parts)
+
+    def _report_incomplete(self, stamp: float, parts: dict) -> None:
+        self.incomplete += 1
+        missing = ", ".join({"info": "CameraInfo", "color": "colour image", "depth": "depth image",
+                             "pose": "camera pose"}[s] for s in STREAMS if s not in parts)
+        note = f"frame at {stamp:.2f} s dropped: no {missing} with its stamp"
+        self.get_logger().warning(note, throttle_duration_sec=2.0)
+        self.heartbeat.update(Health.WARN, note, frames=self.frames, rejected=self.rejected,
+                              incomplete=self.incomplete, missing=missing)
 
     # ------------------------------------------------------------------ one frame
     def _process(self, stamp: float, frame: dict) -> None:

@@ -91,9 +91,12 @@ def random_scene(distance: float, yaw: float, rng: np.random.Generator, seed: in
 
 
 def world_config(scene: TrialScene) -> object:
-    """The sim core's WorldConfig of a scene: the sim bridge's camera and robot visuals."""
-    from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, HingeSide, StanceConfig,
-                                       WorldConfig)
+    """The sim core's WorldConfig of a scene: the sim bridge's camera and robot visuals, on the
+    kinematic robot (:class:`~door_sim_bridge.world.config.RobotMode`): the search turns the body
+    in place by placing the base (:mod:`door_detection.search_trial`), which the physical robot
+    refuses, and only the camera's view is measured."""
+    from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, HingeSide, RobotMode,
+                                       StanceConfig, WorldConfig)
 
     look = scene.appearance
     door = DoorConfig(opening=DoorOpening(scene.opening), hinge_side=HingeSide(scene.hinge_side),
@@ -102,4 +105,5 @@ def world_config(scene: TrialScene) -> object:
                       floor_colour=look.floor)
     camera = CameraConfig(depth_noise_coefficient=scene.depth_noise, light_direction=look.light)
     stance = StanceConfig(distance=scene.distance, lateral_offset=scene.lateral, yaw=scene.yaw)
-    return WorldConfig(door=door, stance=stance, camera=camera, seed=scene.seed)
+    return WorldConfig(door=door, stance=stance, camera=camera, seed=scene.seed,
+                       robot_mode=RobotMode.KINEMATIC)

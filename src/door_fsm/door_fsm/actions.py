@@ -1,4 +1,4 @@
-"""Actions the machine asks the supervisor node to perform (publish, call, execute)."""
+"""Actions the machine asks the supervisor node to perform (publish, call, execute, stop)."""
 
 from __future__ import annotations
 
@@ -14,12 +14,31 @@ class RequestDetection:
 class RequestFootsteps:
     request_id: int
     goal: str  # "stand" | "through"
+    attempt: int = 0  # 0 first try, +1 per repeat of the state
 
 
 @dataclass(frozen=True)
 class RequestMotion:
     request_id: int
     motion: str
+    attempt: int = 0
+
+
+@dataclass(frozen=True)
+class CancelPlanning:
+    """Tell the planner to drop ``request_id`` (it answers SUPERSEDED and proposes nothing)."""
+
+    request_id: int
+    kind: str  # "footsteps" | "motion"
+    reason: str
+
+
+@dataclass(frozen=True)
+class StopMotion:
+    """Stop every execution now: an empty JointTrajectory (the arm holds) and an empty
+    footstep Path (the walk ends at the next stable stance), as ros2_control does."""
+
+    reason: str
 
 
 @dataclass(frozen=True)
@@ -38,6 +57,7 @@ class Execute:
 
 @dataclass(frozen=True)
 class AskApproval:
+    request_id: int
     text: str
 
 
@@ -54,10 +74,10 @@ class AnnounceState:
 
 @dataclass(frozen=True)
 class Notice:
-    """Something the operator should read in the log (e.g. an ignored command)."""
+    """Something the operator should read in the log (e.g. a refused command)."""
 
     text: str
 
 
-Action = (RequestDetection | RequestFootsteps | RequestMotion | CallGrasp | Execute | AskApproval
-          | ClearApproval | AnnounceState | Notice)
+Action = (RequestDetection | RequestFootsteps | RequestMotion | CancelPlanning | StopMotion | CallGrasp
+          | Execute | AskApproval | ClearApproval | AnnounceState | Notice)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from door_fsm.operator_commands import OperatorCommand
+from door_fsm.operator_commands import OperatorWord
 
 
 @dataclass(frozen=True)
@@ -13,6 +13,7 @@ class ProposalReady:
 
     request_id: int
     summary: dict = field(default_factory=dict)  # shown to the operator: counts, costs, durations
+    work_s: float = 0.0  # nominal execution time (trajectory duration, steps × step time), robot clock
 
 
 @dataclass(frozen=True)
@@ -23,11 +24,12 @@ class ProposalFailed:
 
 @dataclass(frozen=True)
 class ExecutionFinished:
-    """The sim bridge (or robot) finished — or rejected — executing ``request_id``."""
+    """The sim bridge (or robot) finished — or rejected, or stopped — executing ``request_id``."""
 
     request_id: int
     succeeded: bool
     reason: str = ""
+    fell: bool = False  # the robot fell: the task cannot go on (no repeat)
 
 
 @dataclass(frozen=True)
@@ -44,7 +46,7 @@ class HandSlipped:
 
 @dataclass(frozen=True)
 class OperatorSaid:
-    command: OperatorCommand
+    word: OperatorWord
 
 
 @dataclass(frozen=True)

@@ -1,17 +1,16 @@
 """ROS 2 node ``/fsm_supervisor``: runs the door task's state machine (seed 001 Fig. 3).
 
-The node turns topics into machine events and machine actions into publications and
-service calls; everything that decides lives in :mod:`door_fsm.machine`. Proposals
-(footstep plans, trajectories) are matched to their planning outcome through the stamp
-the planner gives them (``details['stamp_ns']``); executions are matched through the
-stamp this node gives what it sends.
+Thin glue: topics become machine events, machine actions become publications and service
+calls. Deciding lives in :mod:`door_fsm.machine`, pairing answers with requests in
+:mod:`door_fsm.exchange`, the door's context in :mod:`door_fsm.door_context`. Deadlines:
+planning and approval on the steady clock, executions on the node's ROS clock (sim time
+under ``use_sim_time``); docs/CLOCKS.md.
 """
 
 from __future__ import annotations
 
-import time
-
 from nav_msgs.msg import Path
+from rclpy.clock import Clock, ClockType
 from rclpy.node import Node
 from std_msgs.msg import String
 from std_srvs.srv import SetBool
@@ -19,114 +18,118 @@ from trajectory_msgs.msg import JointTrajectory
 
 from door_contract.converters.diagnostics import Health
 from door_contract.errors import ContractError
-from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
-                                        declare_parameters, run_node)
-from door_contract.payloads import (DoorEstimate, ExecutionOutcome, FootstepRequest, MotionRequest,
-                                    OutcomeStatus, PlanningOutcome, TaskReport, decode, encode)
-from door_contract.stamps import stamp_ns
+from door_contract.frames import Frame
+from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
+                                        create_contract_subscription, declare_parameters, run_node)
+from door_contract.payloads import ExecutionOutcome, OutcomeStatus, PlanningCancel, PlanningOutcome, decode, encode
+from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
 from door_contract.topics import Services, Topics
 from door_fsm import actions as act
 from door_fsm import events as ev
-from door_fsm.machine import DoorTaskMachine, MachineOptions
+from door_fsm.answers import execution_event, planning_event, usable_door_estimate
+from door_fsm.door_context import DoorContext
+from door_fsm.exchange import PlanExchange, Proposal
+from door_fsm.graph_watch import GraphWatch
+from door_fsm.machine import DoorTaskMachine, MachineOptions, MachineOptionsError
 from door_fsm.operator_commands import AutonomyLevel, UnknownCommandError, parse_command
 from door_fsm.parameters import NODE_NAME, SUPERVISOR_PARAMETERS
+from door_fsm.records import Instant
 from door_fsm.states import DoorOpening
-from door_fsm.summaries import door_summary, plan_summary
+from door_fsm.summaries import door_summary, task_report, work_of
+from door_robot.errors import RobotModelError
+from door_robot.profile import load_profile
+
+HEARTBEAT_PERIOD_S = 0.25
+KINDS = {"footsteps": (Topics.FOOTSTEP_PROPOSAL, Topics.FOOTSTEP_OUTCOME, Topics.FOOTSTEP_CANCEL),
+         "motion": (Topics.MOTION_PROPOSAL, Topics.MOTION_OUTCOME, Topics.MOTION_CANCEL)}
 
 
 class FsmSupervisorNode(Node):
     def __init__(self) -> None:
         super().__init__(NODE_NAME)
-        p = declare_parameters(self, SUPERVISOR_PARAMETERS)
-        self.parameters = p
-        self.machine = DoorTaskMachine(MachineOptions(
-            opening=DoorOpening(p["opening"]), autonomy=AutonomyLevel(p["autonomy"]),
-            state_timeout_s=p["state_timeout"], approval_timeout_s=p["approval_timeout"],
-            max_repeats=p["max_repeats"]))
-        self.heartbeat = Heartbeat(self)
-        self.door: DoorEstimate | None = None
-        self.approved_door: DoorEstimate | None = None  # the estimate DETECT_DOOR proposed
-        self.door_angle = 0.0  # rad, as left by the last executed door motion
-        self._planned_door_angle = 0.0  # rad, at the end of the motion being executed
+        p = self.parameters = declare_parameters(self, SUPERVISOR_PARAMETERS)
+        with as_parameter_error(f"parameter 'robot_profile' = {p['robot_profile']!r}", RobotModelError):
+            step_duration = load_profile(p["robot_profile"]).walking.step_duration
+        with as_parameter_error("fsm_supervisor timeouts", MachineOptionsError):
+            self.machine = DoorTaskMachine(MachineOptions(
+                opening=DoorOpening(p["opening"]), autonomy=AutonomyLevel(p["autonomy"]),
+                planning_timeout_s=p["planning_timeout"], approval_timeout_s=p["approval_timeout"],
+                execution_factor=p["execution_timeout_factor"], execution_margin_s=p["execution_timeout_margin"],
+                max_repeats=p["max_repeats"]))
+        self.door = DoorContext(p["opening"], p["backend"])
+        self.exchange = PlanExchange(lambda message: work_of(message, step_duration))
+        # 4 Hz: the sim bridge's dead-man stops the robot when this heartbeat falls silent
+        self.heartbeat = Heartbeat(self, period_s=HEARTBEAT_PERIOD_S)
+        self.stamps, self.steady = UniqueStamps(), Clock(clock_type=ClockType.STEADY_TIME)
+        self.graph = GraphWatch(set(p["required_nodes"]), self._seconds(self.steady) + p["start_delay"],
+                                p["graph_timeout"])
         self._detection_request: int | None = None
-        self._proposals: dict[int, Path | JointTrajectory] = {}  # planner stamp → message
-        self._pending: dict[int, PlanningOutcome] = {}  # outcome waiting for its message
-        self._approved: dict[int, Path | JointTrajectory] = {}  # request id → message to send
-        self._executing: dict[int, int] = {}  # sent stamp → request id
-        self._seen_nodes: set[str] = set()
-        self._started = False
+        self._handlers = {act.AnnounceState: self._announce, act.AskApproval: self._ask, act.ClearApproval:
+                          lambda a: self.approval_pub.publish(String(data="")),
+                          act.Notice: lambda a: self.get_logger().warning(a.text),
+                          act.RequestDetection: self._request_detection, act.RequestFootsteps: self._request_footsteps,
+                          act.RequestMotion: self._request_motion, act.CancelPlanning: self._cancel,
+                          act.StopMotion: self._stop, act.CallGrasp: self._call_grasp, act.Execute: self._execute}
         self._make_interfaces()
-        self._start_at = time.monotonic() + p["start_delay"]
-        self.create_timer(0.1, self._tick)
+        self.create_timer(0.1, self._tick, clock=self.steady)  # runs even when /clock stops
         self.get_logger().info(f"ready: {p['opening']} door, autonomy {p['autonomy']}, backend {p['backend']}")
 
-    # ------------------------------------------------------------------ wiring to the bus
     def _make_interfaces(self) -> None:
         pub = lambda topic: create_contract_publisher(self, topic)
-        self.state_pub, self.approval_pub = pub(Topics.TASK_STATE), pub(Topics.APPROVAL_REQUEST)
-        self.report_pub = pub(Topics.TASK_REPORT)
+        self.state_pub, self.approval_pub, self.report_pub = (pub(t) for t in (
+            Topics.TASK_STATE, Topics.APPROVAL_REQUEST, Topics.TASK_REPORT))
         self.footsteps_pub, self.trajectory_pub = pub(Topics.FOOTSTEP_PLAN), pub(Topics.ARM_TRAJECTORY)
-        self.footstep_request_pub, self.motion_request_pub = pub(Topics.FOOTSTEP_REQUEST), pub(Topics.MOTION_REQUEST)
+        self.request_pubs = {"footsteps": pub(Topics.FOOTSTEP_REQUEST), "motion": pub(Topics.MOTION_REQUEST)}
+        self.cancel_pubs = {kind: pub(topics[2]) for kind, topics in KINDS.items()}
         sub = lambda topic, callback: create_contract_subscription(self, topic, callback)
+        for kind, (proposal, outcome, _) in KINDS.items():
+            sub(proposal, lambda m, k=kind: self._feed_answer(self.exchange.add_message(k, stamp_ns(m.header.stamp), m)))
+            sub(outcome, lambda m, k=kind: self._on_planning_outcome(k, m))
         sub(Topics.DOOR_ESTIMATE, self._on_door_estimate)
-        sub(Topics.FOOTSTEP_PROPOSAL, self._on_proposal_message)
-        sub(Topics.MOTION_PROPOSAL, self._on_proposal_message)
-        sub(Topics.FOOTSTEP_OUTCOME, self._on_planning_outcome)
-        sub(Topics.MOTION_OUTCOME, self._on_planning_outcome)
         sub(Topics.EXECUTION_OUTCOME, self._on_execution_outcome)
         sub(Topics.OPERATOR, self._on_operator)
-        self.grasp_clients = {spec.name.split("/")[1].split("_")[0]: self.create_client(spec.srv_class(), spec.name)
-                              for spec in Services.all()}
+        self.grasp_clients = {spec.name.split("/")[1].split("_")[0]: self.create_client(
+            spec.srv_class(), spec.name, qos_profile=spec.qos.to_profile()) for spec in Services.all()}
 
-    def _now(self) -> float:
-        return time.monotonic()
+    @staticmethod
+    def _seconds(clock: Clock) -> float:
+        return clock.now().nanoseconds * 1e-9
+
+    def _now(self) -> Instant:
+        return Instant(self._seconds(self.steady), self._seconds(self.get_clock()))
 
     def _feed(self, event: ev.Event) -> None:
-        self._perform(self.machine.handle(event, self._now()))
+        self._run(self.machine.handle(event, self._now()))
+
+    def _run(self, actions: list[act.Action]) -> None:
+        for action in actions:
+            self._handlers[type(action)](action)
+        self.exchange.begin(self.machine.request_id)  # answers to older requests are stale now
 
     # ------------------------------------------------------------------ inputs
     def _on_door_estimate(self, msg: String) -> None:
         try:
-            estimate = decode(DoorEstimate, msg.data)
+            estimate = usable_door_estimate(msg.data)
         except ContractError as error:
             self.get_logger().warning(f"door estimate rejected: {error}")
             return
-        self.door = estimate
+        self.door.latest = estimate
         if self._detection_request is not None:
             request, self._detection_request = self._detection_request, None
-            self.approved_door = estimate
+            self.door.approved = estimate
             self._feed(ev.ProposalReady(request, door_summary(estimate)))
 
-    def _on_proposal_message(self, msg: Path | JointTrajectory) -> None:
-        stamp = stamp_ns(msg.header.stamp)
-        self._proposals[stamp] = msg
-        outcome = self._pending.pop(stamp, None)
-        if outcome is not None:
-            self._accept_proposal(outcome, msg)
-
-    def _on_planning_outcome(self, msg: String) -> None:
+    def _on_planning_outcome(self, kind: str, msg: String) -> None:
         try:
-            outcome = decode(PlanningOutcome, msg.data)
+            self._feed_answer(self.exchange.add_outcome(kind, decode(PlanningOutcome, msg.data)))
         except ContractError as error:
             self.get_logger().warning(f"planning outcome rejected: {error}")
-            return
-        if outcome.request_id != self.machine.request_id:
-            return  # an answer to an earlier request
-        if outcome.status is not OutcomeStatus.SUCCESS:
-            self._feed(ev.ProposalFailed(outcome.request_id, outcome.reason))
-            return
-        if "door_angle" in outcome.details:
-            self._planned_door_angle = float(outcome.details["door_angle"])
-        stamp = int(outcome.details.get("stamp_ns", -1))
-        message = self._proposals.pop(stamp, None)
-        if message is None:
-            self._pending[stamp] = outcome  # the proposal itself has not arrived yet
-        else:
-            self._accept_proposal(outcome, message)
 
-    def _accept_proposal(self, outcome: PlanningOutcome, message: Path | JointTrajectory) -> None:
-        self._approved[outcome.request_id] = message
-        self._feed(ev.ProposalReady(outcome.request_id, plan_summary(outcome)))
+    def _feed_answer(self, answer: Proposal | PlanningOutcome | None) -> None:
+        if answer is not None:
+            if isinstance(answer, Proposal):
+                self.door.planned(answer.outcome)
+            self._feed(planning_event(answer))
 
     def _on_execution_outcome(self, msg: String) -> None:
         try:
@@ -134,113 +137,74 @@ class FsmSupervisorNode(Node):
         except ContractError as error:
             self.get_logger().warning(f"execution outcome rejected: {error}")
             return
-        request = self._executing.pop(outcome.request_id, None)
-        if request is None:
-            return
-        if outcome.slipped:
-            self._feed(ev.HandSlipped(outcome.reason))
-            return
-        if outcome.status is OutcomeStatus.SUCCESS:
-            self.door_angle = self._planned_door_angle
-        self._feed(ev.ExecutionFinished(request, outcome.status is OutcomeStatus.SUCCESS, outcome.reason))
+        request = self.exchange.finished(outcome.request_id)
+        if request is not None:
+            if outcome.status is OutcomeStatus.SUCCESS and not outcome.slipped:
+                self.door.executed()
+            self._feed(execution_event(outcome, request))
 
     def _on_operator(self, msg: String) -> None:
         try:
-            command = parse_command(msg.data)
+            word = parse_command(msg.data)
         except UnknownCommandError as error:
             self.get_logger().warning(str(error))
             return
-        self.get_logger().info(f"operator: {command.value}")
-        self._feed(ev.OperatorSaid(command))
+        self.get_logger().info(f"operator: {word}")
+        self._feed(ev.OperatorSaid(word))
 
     def _tick(self) -> None:
-        if not self._started:
-            self._start_when_ready()
-            return
-        self._check_nodes()
-        self._perform(self.machine.tick(self._now()))
-
-    def _start_when_ready(self) -> None:
-        """Start once start_delay has passed and every required node is up (the planning
-        time of DETECT_DOOR is then the detector's, not the graph's start-up), or anyway
-        after graph_timeout more, naming the absent nodes."""
         now = self._now()
-        if now < self._start_at:
-            return
-        missing = sorted(set(self.parameters["required_nodes"]) - set(self.get_node_names()))
-        if missing and now < self._start_at + self.parameters["graph_timeout"]:
-            self.heartbeat.update(self.heartbeat.health, f"waiting for {', '.join(missing)}")
-            return
-        if missing:
-            self.get_logger().warning(f"starting without {', '.join(missing)}: not up after "
-                                      f"{self.parameters['graph_timeout']:.0f} s")
-        self._started = True
-        self._perform(self.machine.start(now))
-
-    def _check_nodes(self) -> None:
-        present = set(self.get_node_names())
-        required = set(self.parameters["required_nodes"])
-        if not (present & required) <= self._seen_nodes:
-            self._seen_nodes |= present & required
-            self.heartbeat.update(self.heartbeat.health, self.heartbeat.message,
-                                  watching=",".join(sorted(self._seen_nodes)))
-        for name in sorted(self._seen_nodes - present):
-            self._seen_nodes.discard(name)
+        step = self.graph.step(now.wall, set(self.get_node_names()))
+        self.heartbeat.update(self.heartbeat.health, step.message or self.heartbeat.message,
+                              watching=",".join(sorted(self.graph.seen)))
+        if step.warning:
+            self.get_logger().warning(step.warning)
+        if step.start:
+            self._run(self.machine.start(now))
+        for name in step.lost:
             self._feed(ev.NodeLost(name))
+        if self.graph.started:
+            self._run(self.machine.tick(now))
 
     # ------------------------------------------------------------------ outputs
-    def _perform(self, actions: list[act.Action]) -> None:
-        for action in actions:
-            handler = getattr(self, f"_do_{type(action).__name__}")
-            handler(action)
-
-    def _do_AnnounceState(self, action: act.AnnounceState) -> None:
+    def _announce(self, action: act.AnnounceState) -> None:
         self.state_pub.publish(String(data=action.state))
         health = Health.ERROR if action.state == "FAILED" else Health.OK
-        self.heartbeat.update(health, action.state, reason=action.reason or "-",
-                              failure=self.machine.failure_reason or "-")
+        self.heartbeat.update(health, action.state, reason=action.reason or "-", failure=self.machine.failure_reason or "-")
         self.get_logger().info(f"state {action.state}" + (f" ({action.reason})" if action.reason else ""))
         if self.machine.state.is_terminal:
-            report = TaskReport(self.machine.state.value, self.machine.failure_reason,
-                                self.parameters["opening"], self.parameters["autonomy"],
-                                tuple(self.machine.report()))
+            report = task_report(self.machine.state.value, self.machine.failure_reason, self.parameters["opening"],
+                                 self.parameters["autonomy"], self.machine.report(),
+                                 "sim" if self.get_parameter("use_sim_time").value else "wall")
             self.report_pub.publish(String(data=encode(report)))
 
-    def _do_AskApproval(self, action: act.AskApproval) -> None:
+    def _ask(self, action: act.AskApproval) -> None:
         self.approval_pub.publish(String(data=action.text))
         self.get_logger().info(f"waiting for the operator: {action.text}")
 
-    def _do_ClearApproval(self, action: act.ClearApproval) -> None:
-        self.approval_pub.publish(String(data=""))
-
-    def _do_Notice(self, action: act.Notice) -> None:
-        self.get_logger().warning(action.text)
-
-    def _do_RequestDetection(self, action: act.RequestDetection) -> None:
+    def _request_detection(self, action: act.RequestDetection) -> None:
         self._detection_request = action.request_id
 
-    def _do_RequestFootsteps(self, action: act.RequestFootsteps) -> None:
-        request = FootstepRequest(action.request_id, action.goal, self.parameters["opening"], self.door_angle,
-                                  self._approved_door_stamp(), self._approved_door_json())
-        self.footstep_request_pub.publish(String(data=encode(request)))
+    def _request_footsteps(self, action: act.RequestFootsteps) -> None:
+        self.request_pubs["footsteps"].publish(String(data=encode(self.door.footstep_request(action))))
 
-    def _do_RequestMotion(self, action: act.RequestMotion) -> None:
-        request = MotionRequest(action.request_id, action.motion, self.parameters["opening"],
-                                self.parameters["backend"], self.door_angle, self._approved_door_stamp(),
-                                self._approved_door_json())
-        self.motion_request_pub.publish(String(data=encode(request)))
+    def _request_motion(self, action: act.RequestMotion) -> None:
+        self.request_pubs["motion"].publish(String(data=encode(self.door.motion_request(action))))
 
-    def _approved_door_stamp(self) -> float:
-        """The stamp of the door estimate DETECT_DOOR accepted: later estimates (seen up close,
-        while walking) do not silently replace what the operator approved."""
-        return self.approved_door.stamp if self.approved_door is not None else -1.0
+    def _cancel(self, action: act.CancelPlanning) -> None:
+        self.cancel_pubs[action.kind].publish(String(data=encode(PlanningCancel(action.request_id, action.reason))))
 
-    def _approved_door_json(self) -> str:
-        return encode(self.approved_door) if self.approved_door is not None else ""
+    def _stop(self, action: act.StopMotion) -> None:
+        """ros2_control's stop: an empty trajectory holds the arm; an empty path ends the walk."""
+        stamp = time_msg_of_ns(self.stamps.next(self.get_clock().now().nanoseconds))
+        trajectory, path = JointTrajectory(), Path()
+        trajectory.header.stamp, path.header.stamp, path.header.frame_id = stamp, stamp, Frame.ODOM.value
+        self.trajectory_pub.publish(trajectory)
+        self.footsteps_pub.publish(path)
+        self.get_logger().warning(f"stopping all motion: {action.reason}")
 
-    def _do_CallGrasp(self, action: act.CallGrasp) -> None:
-        door = self.approved_door or self.door
-        hand = door.hinge_side.grasp_hand(self.parameters["opening"]) if door else "right"
+    def _call_grasp(self, action: act.CallGrasp) -> None:
+        hand = self.door.grasp_hand()
         client = self.grasp_clients[hand]
         if not client.service_is_ready():
             self._feed(ev.GraspAnswered(action.request_id, False, f"/{hand}_hand/grasp is not available"))
@@ -250,11 +214,15 @@ class FsmSupervisorNode(Node):
             ev.GraspAnswered(rid, bool(f.result() and f.result().success),
                              f.result().message if f.result() else "no answer")))
 
-    def _do_Execute(self, action: act.Execute) -> None:
-        message = self._approved.pop(action.request_id)
-        message.header.stamp = self.get_clock().now().to_msg()
-        self._executing[stamp_ns(message.header.stamp)] = action.request_id
-        (self.footsteps_pub if isinstance(message, Path) else self.trajectory_pub).publish(message)
+    def _execute(self, action: act.Execute) -> None:
+        proposal = self.exchange.take(action.request_id)
+        if proposal is None:
+            self._feed(ev.ExecutionFinished(action.request_id, False, "the approved proposal is gone"))
+            return
+        stamp = self.stamps.next(self.get_clock().now().nanoseconds)
+        proposal.message.header.stamp = time_msg_of_ns(stamp)
+        self.exchange.sent(stamp, action.request_id)
+        (self.footsteps_pub if isinstance(proposal.message, Path) else self.trajectory_pub).publish(proposal.message)
 
 
 def main(args: list[str] | None = None) -> int:

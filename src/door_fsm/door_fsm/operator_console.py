@@ -1,10 +1,12 @@
 """``operator_console``: watch the door task and answer it from a terminal.
 
 Shows ``/door_task/state`` and ``/door_task/approval_request`` as they change and sends what
-you type (approve, reject, repeat, pause, resume, abort, manual) on ``/door_task/operator``
-— the same topic and message as ``ros2 topic pub /door_task/operator std_msgs/msg/String
-"{data: approve}"``. ``--approve-all`` answers every approval request itself (scripted
-operator for demonstrations and tests).
+you type on ``/door_task/operator`` — the same topic and message as ``ros2 topic pub
+/door_task/operator std_msgs/msg/String "{data: 'approve 7'}"``. Answers name the request:
+``approve 7``, ``reject 7``, ``repeat 7``; a bare ``approve``/``reject``/``repeat`` here answers
+the request shown last. ``pause``, ``stop``, ``resume``, ``abort``, ``manual`` need no id.
+``--approve-all`` answers every approval request itself (scripted operator for
+demonstrations and tests).
 """
 
 from __future__ import annotations
@@ -18,7 +20,8 @@ from std_msgs.msg import String
 
 from door_contract.node_support import create_contract_publisher, create_contract_subscription, run_node
 from door_contract.topics import Topics
-from door_fsm.operator_commands import OperatorCommand, UnknownCommandError, parse_command
+from door_fsm.operator_commands import (OperatorCommand, OperatorWord, UnknownCommandError, parse_command,
+                                        request_id_of, usage)
 
 
 class OperatorConsole(Node):
@@ -29,6 +32,7 @@ class OperatorConsole(Node):
         create_contract_subscription(self, Topics.TASK_STATE, self._on_state)
         create_contract_subscription(self, Topics.APPROVAL_REQUEST, self._on_request)
         self.state = ""
+        self.shown_request: int | None = None  # the id of the approval request shown last
 
     def _on_state(self, msg: String) -> None:
         self.state = msg.data
@@ -37,13 +41,21 @@ class OperatorConsole(Node):
     def _on_request(self, msg: String) -> None:
         if not msg.data:
             return
+        self.shown_request = request_id_of(msg.data)
         print(f"[approval request] {msg.data}", flush=True)
-        if self.approve_all:
-            self.send(OperatorCommand.APPROVE)
+        if self.approve_all and self.shown_request is not None:
+            self.send(OperatorWord(OperatorCommand.APPROVE, self.shown_request))
 
-    def send(self, command: OperatorCommand) -> None:
-        self.command_pub.publish(String(data=command.value))
-        print(f"[sent] {command.value}", flush=True)
+    def send(self, word: OperatorWord) -> None:
+        self.command_pub.publish(String(data=str(word)))
+        print(f"[sent] {word}", flush=True)
+
+    def typed(self, line: str) -> OperatorWord:
+        """What a typed line means: a bare approve/reject/repeat answers the request shown last."""
+        words = line.split()
+        if len(words) == 1 and words[0].lower() in ("approve", "reject", "repeat") and self.shown_request is not None:
+            line = f"{words[0]} {self.shown_request}"
+        return parse_command(line)
 
 
 def _read_commands(console: OperatorConsole) -> None:
@@ -51,7 +63,7 @@ def _read_commands(console: OperatorConsole) -> None:
         if not line.strip():
             continue
         try:
-            console.send(parse_command(line))
+            console.send(console.typed(line))
         except UnknownCommandError as error:
             print(f"[error] {error}", flush=True)
 
@@ -65,7 +77,7 @@ def main(argv: list[str] | None = None) -> int:
 
 def _start_console(approve_all: bool) -> OperatorConsole:
     console = OperatorConsole(approve_all)
-    print("commands: " + ", ".join(c.value for c in OperatorCommand), flush=True)
+    print(f"commands: {usage()}", flush=True)
     threading.Thread(target=_read_commands, args=(console,), daemon=True).start()
     return console
 

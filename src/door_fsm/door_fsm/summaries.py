@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from door_contract.payloads import DoorEstimate, PlanningOutcome
+from door_contract.payloads import DoorEstimate, PlanningOutcome, TaskReport
 
 
 def door_summary(estimate: DoorEstimate) -> dict:
@@ -19,3 +19,23 @@ def plan_summary(outcome: PlanningOutcome) -> dict:
     summary = {k: outcome.details[k] for k in keep if k in outcome.details}
     summary["planning_ms"] = round(outcome.planning_time_s * 1000.0, 1)
     return summary
+
+
+def work_of(message: object, step_duration: float) -> float:
+    """Nominal execution time of a proposal (robot clock, s): a trajectory's duration, or a
+    footstep plan's steps × the robot profile's step duration."""
+    points = getattr(message, "points", None)
+    if points is not None:
+        if not points:
+            return 0.0
+        last = points[-1].time_from_start
+        return last.sec + last.nanosec * 1e-9
+    return len(getattr(message, "poses", ())) * step_duration
+
+
+def task_report(state: str, failure_reason: str, opening: str, autonomy: str, attempts: list[dict],
+                robot_clock: str) -> TaskReport:
+    """The TaskReport, saying which clock each time is on (docs/CLOCKS.md)."""
+    from door_fsm.records import clocks_note
+
+    return TaskReport(state, failure_reason, opening, autonomy, tuple(attempts), clocks_note(robot_clock))

@@ -6,17 +6,34 @@ transforms in the base frame; pass ``base_pose`` (base in world/odom) to get wor
 quantities. Jacobians are ``LOCAL_WORLD_ALIGNED``: rows (v_x, v_y, v_z, ω_x, ω_y, ω_z) of the
 frame origin expressed in the base axes, so that for a small joint step δq the frame moves
 by J δq (used by Q3 and the Cartesian constraints of seed 001 eq. 5).
+
+An optimiser asks for several frames' poses, Jacobians and the centre of mass at one
+waypoint in a row: the kinematics of the last configuration are kept (one forward pass,
+one joint-Jacobian pass, one centre-of-mass pass per configuration), and frame ids are
+looked up once per name, not on every call.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 
 import numpy as np
 import pinocchio as pin
 
 from door_robot.errors import RobotModelError
 from door_robot.profile import RobotProfile, Side
+
+
+@dataclass
+class _EvaluatedConfiguration:
+    """Which Pinocchio passes ``data`` holds for configuration ``q`` (None: none yet)."""
+
+    key: bytes = b""  # q's bytes (comparing bytes is several times faster than np.array_equal)
+    joint_jacobians: bool = False
+    com: np.ndarray | None = None
+    com_jacobian: np.ndarray | None = None
+    frame_ids: dict[str, int] = field(default_factory=dict)
 
 
 class RobotKinematics:
@@ -31,6 +48,7 @@ class RobotKinematics:
         for side, arm in profile.arms.items():
             self._add_tcp_frame(profile.tcp_frame(side), arm.tcp_parent_frame, arm.grasp_offset)
         self.data = self.model.createData()
+        self._evaluated = _EvaluatedConfiguration()
         self.joint_names: tuple[str, ...] = tuple(self.model.names[1:])
         self._index = {name: self.model.joints[i].idx_q for i, name in enumerate(self.model.names) if i}
         self.lower_limits = np.array(self.model.lowerPositionLimit)
@@ -63,9 +81,13 @@ class RobotKinematics:
             raise RobotModelError(f"{self.profile.name} has no joint {error.args[0]!r}") from None
 
     def frame_id(self, frame: str) -> int:
+        known = self._evaluated.frame_ids.get(frame)
+        if known is not None:
+            return known
         if not self.model.existFrame(frame):
             raise RobotModelError(f"{self.profile.name} has no frame {frame!r}")
-        return self.model.getFrameId(frame)
+        self._evaluated.frame_ids[frame] = self.model.getFrameId(frame)
+        return self._evaluated.frame_ids[frame]
 
     def arm_indices(self, side: Side) -> np.ndarray:
         return self.joint_indices(self.profile.arm(side).joints)
@@ -84,24 +106,46 @@ class RobotKinematics:
         return bool(np.all(q >= self.lower_limits - tolerance) and np.all(q <= self.upper_limits + tolerance))
 
     # ---------------------------------------------------------------- single configuration
+    def _at(self, q: np.ndarray) -> _EvaluatedConfiguration:
+        """The cache for ``q``: forward kinematics done, the passes of another q forgotten."""
+        evaluated = self._evaluated
+        key = np.asarray(q, dtype=float).tobytes()
+        if key != evaluated.key:
+            pin.forwardKinematics(self.model, self.data, q)
+            evaluated.key = key
+            evaluated.joint_jacobians, evaluated.com, evaluated.com_jacobian = False, None, None
+        return evaluated
+
     def frame_pose(self, q: np.ndarray, frame: str) -> np.ndarray:
         """4×4 pose of ``frame`` in the base frame."""
         frame_id = self.frame_id(frame)
-        pin.forwardKinematics(self.model, self.data, q)
+        self._at(q)
         return pin.updateFramePlacement(self.model, self.data, frame_id).homogeneous.copy()
 
     def frame_jacobian(self, q: np.ndarray, frame: str) -> np.ndarray:
         """6×nq Jacobian (linear rows first) of ``frame``, LOCAL_WORLD_ALIGNED."""
-        return pin.computeFrameJacobian(self.model, self.data, q, self.frame_id(frame),
-                                        pin.ReferenceFrame.LOCAL_WORLD_ALIGNED).copy()
+        frame_id = self.frame_id(frame)
+        evaluated = self._at(q)
+        if not evaluated.joint_jacobians:
+            pin.computeJointJacobians(self.model, self.data, q)
+            evaluated.joint_jacobians = True
+        pin.updateFramePlacement(self.model, self.data, frame_id)
+        return pin.getFrameJacobian(self.model, self.data, frame_id, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
 
     def center_of_mass(self, q: np.ndarray) -> np.ndarray:
         """Whole-body centre of mass (m, base frame): c = Σ mᵢ cᵢ / Σ mᵢ."""
-        return pin.centerOfMass(self.model, self.data, q).copy()
+        evaluated = self._at(q)
+        if evaluated.com is None:
+            evaluated.com = pin.centerOfMass(self.model, self.data, q).copy()
+        return evaluated.com.copy()
 
     def com_jacobian(self, q: np.ndarray) -> np.ndarray:
         """3×nq Jacobian of the centre of mass, ∂c/∂q."""
-        return pin.jacobianCenterOfMass(self.model, self.data, q).copy()
+        evaluated = self._at(q)
+        if evaluated.com_jacobian is None:
+            evaluated.com_jacobian = pin.jacobianCenterOfMass(self.model, self.data, q).copy()
+            evaluated.com = self.data.com[0].copy()
+        return evaluated.com_jacobian.copy()
 
     # ---------------------------------------------------------------- batched over waypoints
     def frame_poses(self, trajectory: np.ndarray, frame: str) -> np.ndarray:

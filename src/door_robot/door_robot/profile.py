@@ -51,6 +51,7 @@ class WalkingLimits:
     foot_width: float  # m
     body_width: float  # m, shoulder to shoulder with arms tucked
     body_depth: float  # m
+    step_duration: float = 1.0  # s per footstep (robot clock): execution deadlines scale with it
 
 
 @dataclass(frozen=True)

@@ -20,14 +20,15 @@ class ArmChain:
     kinematics: RobotKinematics
     side: Side
     body_q: np.ndarray  # full configuration of the joints outside the chain
+    joints: tuple[str, ...] = ()  # a subset of the side's chain; empty: the profile's whole chain
     indices: np.ndarray = field(init=False)
 
     def __post_init__(self) -> None:
-        self.indices = self.kinematics.arm_indices(self.side)
+        self.indices = self.kinematics.joint_indices(self.joint_names)
 
     @property
     def joint_names(self) -> tuple[str, ...]:
-        return self.kinematics.profile.arm(self.side).joints
+        return self.joints or self.kinematics.profile.arm(self.side).joints
 
     @property
     def size(self) -> int:

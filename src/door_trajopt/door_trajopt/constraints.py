@@ -9,6 +9,7 @@ are checked for NaN/inf so that a broken callback ends a solve with
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
@@ -99,14 +100,49 @@ class ConstraintStack:
         parts = [checked_values(b.value(trajectory), b.size, b.name) for b in self.blocks]
         return np.concatenate(parts)
 
+    @cached_property
+    def _data_layout(self) -> tuple[sp.csr_matrix, tuple[np.ndarray, ...]] | None:
+        """The stacked free-column pattern and, per block, which of its pattern's entries
+        lie in free columns; ``None`` unless every block gives ``jacobian_data``."""
+        if not self.blocks or any(b.jacobian_data is None for b in self.blocks):
+            return None
+        keep = []
+        for block in self.blocks:
+            columns = block.pattern.indices
+            keep.append((columns >= self.columns.start) & (columns < self.columns.stop))
+        return self.pattern(), tuple(keep)
+
     def jacobian(self, trajectory: FloatArray) -> sp.csr_matrix:
-        """Stacked Jacobian w.r.t. the free variables (``k x N`` CSR)."""
+        """Stacked Jacobian w.r.t. the free variables (``k x N`` CSR).
+
+        With every block's ``jacobian_data`` the values go straight into the stacked
+        pattern's CSR structure (computed once), instead of a sparse matrix per block
+        restricted to the free columns and stacked: that was a quarter of a door
+        motion's SQP time.
+        """
+        layout = self._data_layout
+        if layout is not None:
+            return self._jacobian_from_data(trajectory, *layout)
         if not self.blocks:
             return sp.csr_matrix((0, self.n_variables))
         parts = [
             free_jacobian(b.jacobian(trajectory), b.size, self.columns, b.name) for b in self.blocks
         ]
         return sp.vstack(parts, format="csr")
+
+    def _jacobian_from_data(self, trajectory: FloatArray, pattern: sp.csr_matrix,
+                            keep: tuple[np.ndarray, ...]) -> sp.csr_matrix:
+        parts = []
+        for block, inside in zip(self.blocks, keep, strict=True):
+            data = np.asarray(block.jacobian_data(trajectory), dtype=np.float64).reshape(-1)
+            if data.size != inside.size:
+                raise TrajoptError(f"{block.name}: Jacobian data has {data.size} entries, expected {inside.size}")
+            parts.append(data[inside])
+        data = np.concatenate(parts)
+        if not np.all(np.isfinite(data)):
+            name = next(b.name for b, p in zip(self.blocks, parts, strict=True) if not np.all(np.isfinite(p)))
+            raise NonFiniteValueError(f"{name}: Jacobian contains NaN/inf")
+        return sp.csr_matrix((data, pattern.indices, pattern.indptr), shape=pattern.shape)
 
     def pattern(self) -> sp.csr_matrix:
         """Stacked structural pattern w.r.t. the free variables (boolean CSR)."""

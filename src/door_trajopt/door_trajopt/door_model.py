@@ -14,18 +14,31 @@ from __future__ import annotations
 from dataclasses import dataclass
 from functools import cached_property
 
+import math
+
 import numpy as np
+import pinocchio as pin
 
 from door_contract.payloads import DoorEstimate
 
 UP = np.array([0.0, 0.0, 1.0])
 
 
+def cross_matrix(vector: np.ndarray) -> np.ndarray:
+    """[k]ₓ, the matrix of k × (·)."""
+    return np.array([[0.0, -vector[2], vector[1]], [vector[2], 0.0, -vector[0]], [-vector[1], vector[0], 0.0]])
+
+
 def rotation_about(unit_axis: np.ndarray, angle: float) -> np.ndarray:
     """Rodrigues: R = I + sin a [k]ₓ + (1 − cos a) [k]ₓ² for a unit axis k."""
-    k = unit_axis
-    cross = np.array([[0.0, -k[2], k[1]], [k[2], 0.0, -k[0]], [-k[1], k[0], 0.0]])
-    return np.eye(3) + np.sin(angle) * cross + (1.0 - np.cos(angle)) * (cross @ cross)
+    cross = cross_matrix(unit_axis)
+    return np.eye(3) + math.sin(angle) * cross + (1.0 - math.cos(angle)) * (cross @ cross)
+
+
+def rotation_about_up(angle: float) -> np.ndarray:
+    """R_z(a), the hinge's rotation (the hinge axis is vertical)."""
+    cos, sin = math.cos(angle), math.sin(angle)
+    return np.array([[cos, -sin, 0.0], [sin, cos, 0.0], [0.0, 0.0, 1.0]])
 
 
 @dataclass(frozen=True)
@@ -53,19 +66,32 @@ class DoorModel:
         return -towards_robot if self.push else towards_robot
 
     def leaf_rotation(self, hinge_angle: float) -> np.ndarray:
-        return rotation_about(UP, self.hinge_sign * hinge_angle)
+        return rotation_about_up(self.hinge_sign * hinge_angle)
+
+    @cached_property
+    def _lever(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Lever axis point a (lever_radius beyond the grasp point, away from the hinge),
+        the grasp point's arm g − a from it, and [l·n]ₓ of the lever's signed turn axis."""
+        axis_point = self.grasp_point + self.lever_radius * self.along
+        return axis_point, self.grasp_point - axis_point, cross_matrix(self.lever_sign * self.normal)
+
+    def _turned_lever(self, handle_angle: float) -> tuple[np.ndarray, np.ndarray]:
+        """R_n(l·φ) and the grasp point's arm R_n(l·φ)(g − a) at handle angle φ."""
+        _, arm, cross = self._lever
+        turn = np.eye(3) + math.sin(handle_angle) * cross + (1.0 - math.cos(handle_angle)) * (cross @ cross)
+        return turn, turn @ arm
 
     def grasp_pose(self, hinge_angle: float, handle_angle: float) -> np.ndarray:
-        """4×4 grasp frame at (θ, φ): the lever turns about the normal, the leaf about the hinge."""
-        # the lever axis is lever_radius beyond the grasp point, away from the hinge
-        axis_point = self.grasp_point + self.lever_radius * self.along
-        # pressing the lever down (φ > 0) swings the grasp point down about the normal axis
-        turn = rotation_about(self.normal, self.lever_sign * handle_angle)
-        grasp_at_phi = axis_point + turn @ (self.grasp_point - axis_point)
+        """4×4 grasp frame at (θ, φ): the lever turns about the normal, the leaf about the hinge.
+
+        R = R_z(sθ) R_n(lφ) R₀ and p = h + R_z(sθ)(a + R_n(lφ)(g − a) − h), with h the hinge
+        point, a the lever axis point, g the grasp point at rest, R₀ :attr:`rest_frame`.
+        """
+        turn, arm = self._turned_lever(handle_angle)
         leaf = self.leaf_rotation(hinge_angle)
         pose = np.eye(4)
         pose[:3, :3] = leaf @ turn @ self.rest_frame
-        pose[:3, 3] = self.hinge_point + leaf @ (grasp_at_phi - self.hinge_point)
+        pose[:3, 3] = self.hinge_point + leaf @ (self._lever[0] + arm - self.hinge_point)
         return pose
 
     @cached_property
@@ -80,31 +106,29 @@ class DoorModel:
         """Grasp frame axes at θ = φ = 0: x = normal, z = up, y = z × x."""
         return np.column_stack([self.normal, np.cross(UP, self.normal), UP])
 
-    def pose_derivatives(self, hinge_angle: float, handle_angle: float, step: float = 1e-6) -> np.ndarray:
-        """(6, 2): ∂(position, rotation vector)/∂(θ, φ) by central differences."""
-        columns = []
-        for d_theta, d_phi in ((step, 0.0), (0.0, step)):
-            plus = self.grasp_pose(hinge_angle + d_theta, handle_angle + d_phi)
-            minus = self.grasp_pose(hinge_angle - d_theta, handle_angle - d_phi)
-            linear = (plus[:3, 3] - minus[:3, 3]) / (2 * step)
-            angular = rotation_vector(plus[:3, :3] @ minus[:3, :3].T) / (2 * step)
-            columns.append(np.concatenate([linear, angular]))
-        return np.column_stack(columns)
+    def pose_derivatives(self, hinge_angle: float, handle_angle: float) -> np.ndarray:
+        """(6, 2): ∂(position, rotation vector)/∂(θ, φ), world-aligned (as frame Jacobians).
+
+        The hinge turns the grasp frame about the vertical axis through h at rate s:
+        ∂p/∂θ = s z × (p − h), ∂ω/∂θ = s z. The lever turns it about the leaf's normal
+        R_z(sθ) n at rate l: ∂p/∂φ = l (R_z n) × (R_z R_n (g − a)), ∂ω/∂φ = l R_z n.
+        """
+        axis_point, _, lever_cross = self._lever
+        leaf = self.leaf_rotation(hinge_angle)
+        _, turned_arm = self._turned_lever(handle_angle)
+        from_hinge = leaf @ (axis_point + turned_arm - self.hinge_point)
+        sign = self.hinge_sign
+        derivatives = np.zeros((6, 2))
+        derivatives[:3, 0] = (-sign * from_hinge[1], sign * from_hinge[0], 0.0)  # s z × (p − h)
+        derivatives[5, 0] = sign
+        derivatives[:3, 1] = leaf @ (lever_cross @ turned_arm)  # (R l n) × (R w) = R (l n × w)
+        derivatives[3:, 1] = self.lever_sign * (leaf @ self.normal)
+        return derivatives
 
 
 def rotation_vector(rotation: np.ndarray) -> np.ndarray:
-    """log(R) as an axis-angle vector (|ω| = angle ≤ π)."""
-    cos_angle = np.clip((np.trace(rotation) - 1.0) / 2.0, -1.0, 1.0)
-    angle = np.arccos(cos_angle)
-    skew = np.array([rotation[2, 1] - rotation[1, 2], rotation[0, 2] - rotation[2, 0],
-                     rotation[1, 0] - rotation[0, 1]])
-    if angle < 1e-9:
-        return skew / 2.0
-    if np.pi - angle < 1e-6:
-        axis = np.sqrt(np.maximum((np.diag(rotation) + 1.0) / 2.0, 0.0))
-        axis *= np.where(skew >= 0, 1.0, -1.0) if np.any(skew) else 1.0
-        return angle * axis / np.linalg.norm(axis)
-    return angle / (2.0 * np.sin(angle)) * skew
+    """log(R) as an axis-angle vector (|ω| = angle ≤ π), by Pinocchio's log₃."""
+    return pin.log3(np.asarray(rotation, dtype=float))
 
 
 def door_model_from_estimate(estimate: DoorEstimate, world_to_base: np.ndarray, push: bool,

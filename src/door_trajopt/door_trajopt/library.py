@@ -3,6 +3,12 @@
 Multi-start as seed 001 Sec. IV: first the IK-keyed initial guess (or the cached last
 feasible solution of the same motion when it starts where this one does), then guesses
 through a random middle state. The first feasible result wins.
+
+The work of one plan is bounded deterministically: at most ``starts + attempt`` guesses
+(plus the cached one on a first attempt), each at most ``max_iterations · (1 + attempt)``
+iterations (capped at ``MAX_ATTEMPT_SCALE``×). ``time_budget_s`` is only a safety net far
+above normal use (a plan takes ~0.1 s): no further guess is started after it. A door state
+outside the door's stops is refused before any work (:class:`DoorStateOutOfRange`).
 """
 
 from __future__ import annotations
@@ -15,10 +21,15 @@ import numpy as np
 
 from door_contract.converters.trajectory import JointPath
 from door_trajopt.chomp import ChompOptions, ChompSolver
-from door_trajopt.motions import Motion, MotionOptions, MotionProblem, MotionSetup, anchored_to_hand, build_motion
+from door_trajopt.motions import (Motion, MotionOptions, MotionProblem, MotionSetup, anchored_to_hand, build_motion,
+                                  check_start_door)
+from door_trajopt.problem import TrajoptError
 from door_trajopt.result import OptimizationResult, Outcome
 from door_trajopt.sqp import SqpOptions, SqpSolver
 from door_trajopt.timing import time_parameterise
+
+
+MAX_ATTEMPT_SCALE = 4  # a repeat gets at most this many times the first attempt's iterations
 
 
 class Backend(str, Enum):
@@ -35,6 +46,8 @@ class MotionPlan:
     attempts: int
     planning_time_s: float
     initial_guess: np.ndarray | None = None  # (n, m) the guess the result was optimised from
+    guess_time_s: float = 0.0  # building the problem and its IK-keyed initial guess (wall)
+    guess_cpu_s: float = 0.0  # the same in this process's CPU time (a loaded machine's wall time is longer)
 
     @property
     def succeeded(self) -> bool:
@@ -48,30 +61,39 @@ class MotionLibrary:
     velocity_scale: float = 0.5
     door_velocity_limits: tuple[float, float] = (0.15, 0.5)  # rad/s of hinge and handle: a door is heavy
     max_iterations: int = 120  # per initial guess (SQP QP solves / CHOMP updates)
-    time_budget_s: float = 10.0  # no further initial guess is tried after this
+    time_budget_s: float = 10.0  # safety net only (plans take ~0.1 s): no further guess after this
     constraint_tolerance: float = 1e-5  # m / rad: 10 µm on the handle (SQP stalled at ~5 µm once)
     cost_tolerance: float = 1e-6  # relative cost/merit change deemed converged
     seed: int = 0
     _cache: dict = field(default_factory=dict)  # motion → last feasible trajectory (n, m)
 
     def plan(self, motion: Motion, setup: MotionSetup, start_chain: np.ndarray,
-             backend: Backend = Backend.SQP, variant: int = 0) -> MotionPlan:
-        """Plan ``motion``; ``variant`` salts the random initial guesses, so a repeated
-        request (the operator's "repeat", the FSM's automatic retry) tries other ones."""
-        started = time.perf_counter()
+             backend: Backend = Backend.SQP, variant: int = 0, attempt: int = 0) -> MotionPlan:
+        """Plan ``motion``; ``variant`` salts the random initial guesses. ``attempt`` counts the
+        repeats of one request (0 first, +1 per repeat: the operator's "repeat", the FSM's
+        automatic retry): a repeat does not reuse the cached trajectory, tries ``attempt``
+        more random guesses, salted by the attempt, and allows more iterations per guess.
+        Raises :class:`DoorStateOutOfRange` for a door state outside the door's stops."""
+        started, started_cpu = time.perf_counter(), time.process_time()
+        if isinstance(attempt, bool) or not isinstance(attempt, int) or attempt < 0:
+            raise TrajoptError(f"attempt must be an integer >= 0, got {attempt!r}")
+        check_start_door(setup.start_door)
         if motion.holds_handle:
             setup = anchored_to_hand(setup, start_chain)
         built = build_motion(motion, setup, start_chain, self.options)
-        rng = np.random.default_rng([self.seed, variant])
-        solver = (SqpSolver(built.problem, SqpOptions(max_iterations=self.max_iterations,
+        guess_time, guess_cpu = time.perf_counter() - started, time.process_time() - started_cpu
+        rng = np.random.default_rng([self.seed, variant] + ([attempt] if attempt else []))
+        iterations = self.max_iterations * min(1 + attempt, MAX_ATTEMPT_SCALE)
+        solver = (SqpSolver(built.problem, SqpOptions(max_iterations=iterations,
                                                       constraint_tolerance=self.constraint_tolerance,
-                                                      cost_tolerance=self.cost_tolerance))
+                                                      cost_tolerance=self.cost_tolerance,
+                                                      constraint_curvature=True))
                   if backend is Backend.SQP else
-                  ChompSolver(built.problem, ChompOptions(max_iterations=self.max_iterations,
+                  ChompSolver(built.problem, ChompOptions(max_iterations=iterations,
                                                           constraint_tolerance=self.constraint_tolerance,
                                                           cost_tolerance=self.cost_tolerance)))
         result, attempts, used_guess = None, 0, None
-        for guess in self._guesses(motion, built, rng):  # one solver: its factorisation is reused
+        for guess in self._guesses(motion, built, rng, attempt):  # one solver: its factorisation is reused
             if attempts and time.perf_counter() - started > self.time_budget_s:
                 break
             attempts += 1
@@ -87,7 +109,8 @@ class MotionLibrary:
             timed = time_parameterise(result.trajectory, built.problem.dof_names, limits)
             path = JointPath(timed.times, built.chain.joint_names, timed.positions[:, :k], timed.velocities[:, :k])
         final = tuple(float(v) for v in result.trajectory[-1, k:])
-        return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started, used_guess)
+        return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started, used_guess,
+                          guess_time, guess_cpu)
 
     def clear_cache(self) -> None:
         """Forget the last feasible trajectories (the next plans start cold)."""
@@ -102,15 +125,15 @@ class MotionLibrary:
                            message=f"feasible at the iteration limit after {result.iterations} iterations")
         return result
 
-    def _guesses(self, motion: Motion, built: MotionProblem, rng: np.random.Generator):
-        cached = self._cache.get(motion)
+    def _guesses(self, motion: Motion, built: MotionProblem, rng: np.random.Generator, attempt: int):
+        cached = self._cache.get(motion) if attempt == 0 else None
         if cached is not None and cached.shape == built.initial_guess.shape and \
                 np.allclose(cached[0], built.problem.start, atol=1e-3):
             yield cached
         yield built.initial_guess
         lower, upper = built.problem.limits.lower, built.problem.limits.upper
         n = built.problem.n_waypoints
-        for _ in range(self.starts - 1):  # linear interpolation through a random middle state
+        for _ in range(self.starts - 1 + attempt):  # linear interpolation through a random middle state
             middle = np.clip(built.initial_guess[n // 2] + rng.normal(0.0, 0.2, lower.size), lower, upper)
             ratio = np.abs(np.linspace(-1.0, 1.0, n))[:, None]
             guess = ratio * built.initial_guess + (1.0 - ratio) * middle

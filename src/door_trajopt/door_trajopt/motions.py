@@ -37,6 +37,23 @@ HINGE_LIMITS = (0.0, 1.75)  # rad, door stop
 HANDLE_LIMITS = (0.0, 1.0)  # rad, handle stop
 
 
+class DoorStateOutOfRange(TrajoptError):
+    """A door state (hinge θ, handle φ) outside the door's stops: no motion can start there."""
+
+
+def check_start_door(start_door: tuple[float, float]) -> None:
+    """Raise :class:`DoorStateOutOfRange` unless θ ∈ HINGE_LIMITS and φ ∈ HANDLE_LIMITS.
+
+    Outside them the problem is unsolvable, and not cheaply so: a turn_handle at
+    θ = 1e6 rad put the grasp pose anywhere on the circle, every IK and every initial
+    guess ran to its budget, and the optimiser was blocked for 80 s.
+    """
+    for name, value, (low, high) in (("hinge angle", start_door[0], HINGE_LIMITS),
+                                     ("handle angle", start_door[1], HANDLE_LIMITS)):
+        if not (np.isfinite(value) and low <= value <= high):
+            raise DoorStateOutOfRange(f"door {name} {value!r} rad is outside the door's range [{low:g}, {high:g}]")
+
+
 class Motion(str, Enum):
     APPROACH_HANDLE = "approach_handle"
     TURN_HANDLE = "turn_handle"
@@ -64,6 +81,9 @@ class MotionOptions:
     push_angle: float = 0.2  # rad the arm pushes the door open (the body pushes it further)
     pull_angle: float = 0.35  # rad (~20°; seed 001: ~40°): the gap the other hand blocks through
     pregrasp_offset: float = 0.04  # m, seed 001 Sec. II
+    grasp_clearance: float = 0.01  # m the approach stops short of the grasp point along the normal:
+    # TALOS's fingertips reach within ~1 cm of the leaf at the grasp point, and a door estimate
+    # ~1 cm deep made the physical arm press 100 N into a latched door (the grasp closes within 2 cm)
     com_margin: float = 0.02  # m inside the support polygon
     wall_clearance: float = 0.04  # m, elbow in front of the door plane
     lever_standoff: float = 0.06  # m, door face behind the grasp point
@@ -81,7 +101,7 @@ class MotionOptions:
     def __post_init__(self) -> None:
         checks = {"waypoints": (4, 200), "handle_turn": (0.1, HANDLE_LIMITS[1]),
                   "push_angle": (0.05, HINGE_LIMITS[1]), "pull_angle": (0.05, HINGE_LIMITS[1]),
-                  "pregrasp_offset": (0.0, 0.2), "com_margin": (0.0, 0.1), "wall_clearance": (0.0, 0.3),
+                  "pregrasp_offset": (0.0, 0.2), "grasp_clearance": (0.0, 0.02), "com_margin": (0.0, 0.1), "wall_clearance": (0.0, 0.3),
                   "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "block_entry": (0.0, 0.5),
                   "block_standoff": (0.0, 0.5), "posture_weight": (0.0, 100.0),
                   "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3), "head_clearance": (0.0, 0.5),
@@ -304,6 +324,7 @@ def _approach(setup: MotionSetup, start_chain: np.ndarray, options: MotionOption
     n, m = options.waypoints, setup.chain.size + 2
     offset = _tcp_in_grasp(setup, start_chain)
     grasp = setup.door.grasp_pose(*setup.start_door) @ offset
+    grasp[:3, 3] += options.grasp_clearance * setup.door.normal
     pregrasp = grasp.copy()
     pregrasp[:3, 3] += options.pregrasp_offset * setup.door.normal
     t_pre = max(1, int(round(0.7 * (n - 1))))

@@ -115,6 +115,9 @@ class Constraint:
     ``value(trajectory)`` returns ``h`` (or ``g``) with shape ``(size,)`` and
     ``jacobian(trajectory)`` its ``(size, n*m)`` derivative.  ``pattern`` is
     the structural non-zero pattern of the Jacobian (``None``: dense).
+    ``jacobian_data`` (optional, with a pattern) returns the Jacobian's values
+    in the order of the pattern's CSR entries, so that the backends can
+    assemble the stacked Jacobian without building a sparse matrix per block.
     """
 
     name: str
@@ -123,6 +126,7 @@ class Constraint:
     value: TrajectoryFunction
     jacobian: TrajectoryJacobian
     pattern: sp.csr_matrix | None = None
+    jacobian_data: TrajectoryFunction | None = None
 
     def __post_init__(self) -> None:
         if not self.name:
@@ -131,6 +135,8 @@ class Constraint:
             raise TrajoptError(f"Constraint {self.name!r}: size must be >= 1, got {self.size}")
         checked = _validated_pattern(self.pattern, self.size, f"Constraint {self.name!r}")
         object.__setattr__(self, "pattern", checked)
+        if self.jacobian_data is not None and checked is None:
+            raise TrajoptError(f"Constraint {self.name!r}: jacobian_data needs a pattern")
 
 
 @dataclass(frozen=True)

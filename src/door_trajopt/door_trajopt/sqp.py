@@ -14,11 +14,11 @@ TrajOpt (Schulman et al.) solves it by SQP on the exact l1 penalty
    ``Q3`` residuals), constraints by their Jacobians ``H``, ``G``.
 2. **QP** (:mod:`door_trajopt.qp_layout`) with slacks for the l1 terms
    (``L1_PENALTY``, TrajOpt) or, the default ``HARD``, the linearised
-   constraints as hard rows -- slacks pinned to zero, with an elastic (l1)
-   re-solve when the linearisation is infeasible inside the box -- and a
+   constraints as hard rows -- a QP without slack variables, with an elastic
+   (l1, slack) re-solve when the linearisation is infeasible inside the box -- and a
    box trust region ``|d_i| <= Delta`` intersected with the joint limits.
-   OSQP is set up once per solver with the structural sparsity and only
-   ``update``-d afterwards; it warm-starts from the previous solution.
+   OSQP is set up once per solver and layout with the structural sparsity and
+   only ``update``-d afterwards; it warm-starts from the previous solution.
 3. **Accept** on the ratio ``rho = (phi(xi) - phi(xi + d)) / (phi(xi) - m(d))``
    of true to model merit decrease: grow ``Delta`` on good steps, shrink it
    on bad ones.
@@ -60,6 +60,7 @@ from door_trajopt.evaluation import (
     build_result,
 )
 from door_trajopt.problem import FloatArray, TrajectoryProblem, TrajoptError
+from door_trajopt.lagrangian_curvature import BlockCurvature, block_pattern
 from door_trajopt.qp_layout import QpLayout
 from door_trajopt.result import OptimizationResult
 from door_trajopt.validation import require_in_range, require_int_at_least
@@ -73,6 +74,8 @@ STAGE_PROGRESS = 1e-3
 """Relative decrease of the linearised violation below which the run is infeasible."""
 PINNED_LIMIT_MARGIN = 1e-6
 """Widening (rad, m) of the joint limits of pinned variables in the QP box."""
+OSQP_RHO_INTERVAL = 50
+"""ADMM iterations between OSQP's step-size (rho) adaptations (what its timing rule picked here)."""
 INFEASIBLE_STATUSES = (
     osqp.SolverStatus.OSQP_PRIMAL_INFEASIBLE,
     osqp.SolverStatus.OSQP_PRIMAL_INFEASIBLE_INACCURATE,
@@ -119,6 +122,10 @@ class SqpOptions:
     * ``qp_refine_tolerance`` -- OSQP accuracy of a warm-started re-solve when
       polishing failed (degenerate active set), ``[1e-14, 1e-2]``.
     * ``qp_max_iterations`` -- OSQP iteration cap, ``>= 25``.
+    * ``constraint_curvature`` -- add the block-diagonal quasi-Newton curvature of
+      the constraints (:mod:`door_trajopt.lagrangian_curvature`) to the QP's
+      Hessian; only for problems whose constraints each touch one waypoint.
+    * ``initial_curvature`` -- its blocks' start ``B_t = initial * I``, ``(0, 1e3]``.
     """
 
     constraint_handling: ConstraintHandling = ConstraintHandling.HARD
@@ -141,6 +148,8 @@ class SqpOptions:
     qp_tolerance: float = 1e-6
     qp_refine_tolerance: float = 1e-9
     qp_max_iterations: int = 20000
+    constraint_curvature: bool = False
+    initial_curvature: float = 1e-2
 
     def __post_init__(self) -> None:
         owner = type(self).__name__
@@ -166,6 +175,7 @@ class SqpOptions:
         require_in_range(owner, "qp_tolerance", self.qp_tolerance, 1e-14, 1e-2)
         require_in_range(owner, "qp_refine_tolerance", self.qp_refine_tolerance, 1e-14, 1e-2)
         require_int_at_least(owner, "qp_max_iterations", self.qp_max_iterations, 25)
+        require_in_range(owner, "initial_curvature", self.initial_curvature, 0.0, 1e3, low_open=True)
 
     def _check_trust_region(self, owner: str) -> None:
         require_in_range(
@@ -248,6 +258,7 @@ class QpStep:
     step: FloatArray
     max_multiplier: float
     slack: float
+    multipliers: FloatArray | None = None  # of the H and G rows (OSQP's y)
 
     @classmethod
     def zero(cls, size: int) -> QpStep:
@@ -275,6 +286,7 @@ class StepOutcome:
     predicted: float
     actual: float
     box_limited: bool
+    multipliers: FloatArray | None = None
 
 
 class SqpSolver:
@@ -284,15 +296,18 @@ class SqpSolver:
         self._options = options if options is not None else SqpOptions()
         self._evaluator = ProblemEvaluator.for_problem(problem)
         self._quadratic_hessian = self._evaluator.objective.quadratic_hessian()
-        self._layout = QpLayout.build(
+        self._curvature: BlockCurvature | None = None
+        patterns = (
             self._evaluator.equalities.pattern(),
             self._evaluator.inequalities.pattern(),
             self._hessian_pattern(),
         )
+        # slack layout for the l1 mode and elastic re-solves; HARD solves without slacks
+        self._layouts = {slacks: QpLayout.build(*patterns, slacks=slacks) for slacks in (True, False)}
         self._lower = self._evaluator.lower_bounds()
         self._upper = self._evaluator.upper_bounds()
         self._pinned = self._evaluator.pinned_variables()
-        self._qp: osqp.OSQP | None = None
+        self._qps: dict[bool, osqp.OSQP] = {}
 
     @property
     def options(self) -> SqpOptions:
@@ -302,7 +317,11 @@ class SqpSolver:
     def _hessian_pattern(self) -> sp.csr_matrix:
         residual = self._evaluator.objective.residual_pattern().astype(np.float64)
         gauss_newton = residual.T @ residual
-        return (abs(self._quadratic_hessian) + abs(gauss_newton)).astype(bool).tocsr()
+        pattern = abs(self._quadratic_hessian) + abs(gauss_newton)
+        if self._options.constraint_curvature:
+            problem = self._evaluator.problem
+            pattern = pattern + block_pattern(problem.n_free, problem.n_dof).astype(np.float64)
+        return pattern.astype(bool).tocsr()
 
     # --- public entry -------------------------------------------------------
 
@@ -317,6 +336,9 @@ class SqpSolver:
     def _run(self, guess: FloatArray, started: float) -> OptimizationResult:
         evaluator, options = self._evaluator, self._options
         free = evaluator.clip_to_limits(evaluator.problem.free_vector(guess))
+        if options.constraint_curvature:  # every solve starts from the same model
+            problem = evaluator.problem
+            self._curvature = BlockCurvature.start(problem.n_free, problem.n_dof, options.initial_curvature)
         values = evaluator.values(free)
         penalty = self._initial_penalty(self._convexify(values))
         state = SqpState(values, options.initial_trust_radius, penalty, 0)
@@ -411,7 +433,7 @@ class SqpSolver:
             if outcome.accepted:
                 if self._converged_step(outcome, state):
                     return state, True
-                model = self._convexify(state.values)
+                model = self._convexify(state.values, model, outcome.multipliers)
             elif state.trust_radius < options.min_trust_radius:
                 return self._collapsed(state), True
         return state, False
@@ -438,12 +460,29 @@ class SqpSolver:
     def _feasible(self, values: PointValues) -> bool:
         return self._evaluator.violation(values).amount <= self._options.constraint_tolerance
 
-    def _convexify(self, values: PointValues) -> ConvexModel:
+    def _convexify(self, values: PointValues, previous: ConvexModel | None = None,
+                   multipliers: FloatArray | None = None) -> ConvexModel:
+        """The model at ``values``; with ``constraint_curvature``, after updating the blocks
+        from the step ``previous`` → ``values`` at the QP's ``multipliers``."""
         point = self._evaluator.model(values)
         hessian = self._quadratic_hessian
-        for residual in self._evaluator.objective.residual_models(values.free):
+        if self._curvature is not None:
+            if previous is not None and multipliers is not None:
+                self._update_curvature(previous.point, point, multipliers)
+            hessian = hessian + self._curvature.matrix()
+        residuals = self._evaluator.objective.residual_models(values.free)
+        if not residuals and self._curvature is None:  # the constant Hessian: P needs no update
+            return ConvexModel(point, self._quadratic_hessian)
+        for residual in residuals:
             hessian = hessian + residual.weight * (residual.jacobian.T @ residual.jacobian)
         return ConvexModel(point, sp.csr_matrix(hessian))
+
+    def _update_curvature(self, old: PointModel, new: PointModel, multipliers: FloatArray) -> None:
+        """``y = (J_new − J_old)ᵀ λ`` over the equality and inequality rows."""
+        k_eq = old.equality_jacobian.shape[0]
+        change = (new.equality_jacobian - old.equality_jacobian).T @ multipliers[:k_eq] + \
+            (new.inequality_jacobian - old.inequality_jacobian).T @ multipliers[k_eq:]
+        self._curvature.update(new.values.free - old.values.free, np.asarray(change).reshape(-1))
 
     # --- one trust-region trial ---------------------------------------------
 
@@ -460,7 +499,7 @@ class SqpSolver:
         predicted = reference - model.model_merit(qp_step.step, state.penalty, model.shift())
         box_limited = float(np.max(np.abs(qp_step.step), initial=0.0)) >= 0.99 * state.trust_radius
         if predicted <= self._improvement_floor(state):
-            return StepOutcome(state, False, predicted, 0.0, box_limited)
+            return StepOutcome(state, False, predicted, 0.0, box_limited, qp_step.multipliers)
         trial = self._trial(model, qp_step.step)
         if reference - trial.merit(state.penalty) < options.acceptance_ratio * predicted:
             trial = self._corrected_trial(model, state, qp_step.step, trial)
@@ -469,7 +508,7 @@ class SqpSolver:
         radius = self._next_radius(state.trust_radius, actual / predicted, qp_step.step)
         values = trial if accepted else model.values
         state = replace(state, values=values, trust_radius=radius)
-        return StepOutcome(state, accepted, predicted, actual, box_limited)
+        return StepOutcome(state, accepted, predicted, actual, box_limited, qp_step.multipliers)
 
     def _trial(self, model: ConvexModel, step: FloatArray) -> PointValues:
         return self._evaluator.values(self._evaluator.clip_to_limits(model.values.free + step))
@@ -504,20 +543,21 @@ class SqpSolver:
     def _solve_qp(
         self, model: ConvexModel, state: SqpState, shift: ConstraintShift, elastic: bool = False
     ) -> QpStep:
-        """Update the persistent OSQP workspace and return the step ``d``."""
-        workspace = self._load(model, state, shift, elastic)
-        result = self._polished_solve(workspace)
-        hard = self._options.constraint_handling is ConstraintHandling.HARD and not elastic
-        if hard and result.info.status_val in INFEASIBLE_STATUSES:
-            workspace.update(
-                l=self._lower_bounds(model, state, shift),
-                u=self._upper_bounds(model, state, shift, elastic=True),
-            )
-            result = self._polished_solve(workspace)
+        """Update the persistent OSQP workspace and return the step ``d``.
+
+        HARD mode solves the slack-free QP; only when its linearisation is infeasible
+        inside the box is the elastic (slack) QP solved instead.
+        """
+        slacks = elastic or self._options.constraint_handling is ConstraintHandling.L1_PENALTY
+        result = self._polished_solve(self._load(model, state, shift, slacks))
+        if not slacks and result.info.status_val in INFEASIBLE_STATUSES:
+            slacks = True
+            result = self._polished_solve(self._load(model, state, shift, slacks))
         usable = result.info.status_val in SOLVED_STATUSES and np.all(np.isfinite(result.x))
+        layout = self._layouts[slacks]
         if not usable:
-            return QpStep.zero(self._layout.n_variables)
-        return self._qp_step(result.x, result.y)
+            return QpStep.zero(layout.n_variables)
+        return self._qp_step(result.x, result.y, layout)
 
     def _polished_solve(self, workspace: osqp.OSQP) -> SimpleNamespace:
         """Solve; if OSQP's polishing failed (degenerate active set), refine ADMM.
@@ -541,8 +581,8 @@ class SqpSolver:
         workspace.update_settings(eps_abs=options.qp_tolerance, eps_rel=options.qp_tolerance)
         return refined
 
-    def _qp_step(self, solution: FloatArray, duals: FloatArray) -> QpStep:
-        layout = self._layout
+    @staticmethod
+    def _qp_step(solution: FloatArray, duals: FloatArray, layout: QpLayout) -> QpStep:
         n_rows = layout.n_equality + layout.n_inequality
         multipliers = np.abs(duals[:n_rows])
         slack = np.sum(np.abs(solution[layout.n_variables :]))
@@ -550,33 +590,34 @@ class SqpSolver:
             np.asarray(solution[: layout.n_variables]),
             float(np.max(multipliers, initial=0.0)),
             float(slack),
+            np.array(duals[:n_rows]),
         )
 
     def _load(
-        self, model: ConvexModel, state: SqpState, shift: ConstraintShift, elastic: bool
+        self, model: ConvexModel, state: SqpState, shift: ConstraintShift, slacks: bool
     ) -> osqp.OSQP:
-        """Set OSQP up on first use; afterwards only ``update`` the values."""
-        layout, options = self._layout, self._options
+        """Set OSQP up on first use of a layout; afterwards only ``update`` the values."""
+        layout, options = self._layouts[slacks], self._options
         point = model.point
         q = layout.linear_term(point.gradient, state.penalty)
-        lower = self._lower_bounds(model, state, shift)
-        upper = self._upper_bounds(model, state, shift, elastic=elastic)
-        if self._qp is None:
-            self._qp = self._setup(model, q, lower, upper)
-            return self._qp
-        self._qp.update(
-            q=q,
-            l=lower,
-            u=upper,
-            Px=layout.p_values(model.hessian, options.slack_curvature),
-            Ax=layout.a_values(point.equality_jacobian, point.inequality_jacobian),
-        )
-        return self._qp
+        lower = self._lower_bounds(model, state, shift, layout)
+        upper = self._upper_bounds(model, state, shift, layout)
+        workspace = self._qps.get(slacks)
+        if workspace is None:
+            self._qps[slacks] = self._setup(model, q, lower, upper, layout)
+            return self._qps[slacks]
+        changes = {"q": q, "l": lower, "u": upper,
+                   "Ax": layout.a_values(point.equality_jacobian, point.inequality_jacobian)}
+        if model.hessian is not self._quadratic_hessian:  # Gauss-Newton terms changed P
+            changes["Px"] = layout.p_values(model.hessian, options.slack_curvature)
+        workspace.update(**changes)
+        return workspace
 
     def _setup(
-        self, model: ConvexModel, q: FloatArray, lower: FloatArray, upper: FloatArray
+        self, model: ConvexModel, q: FloatArray, lower: FloatArray, upper: FloatArray,
+        layout: QpLayout,
     ) -> osqp.OSQP:
-        layout, options = self._layout, self._options
+        options = self._options
         workspace = osqp.OSQP()
         workspace.setup(
             layout.p_matrix(model.hessian, options.slack_curvature),
@@ -590,6 +631,9 @@ class SqpSolver:
             max_iter=options.qp_max_iterations,
             polishing=True,
             warm_starting=True,
+            # OSQP's default (0) sets the interval from the measured set-up time, so its
+            # iterates, and the SQP's, could depend on the CPU load; a fixed one cannot
+            adaptive_rho_interval=OSQP_RHO_INTERVAL,
         )
         return workspace
 
@@ -612,10 +656,9 @@ class SqpSolver:
         return lower, upper
 
     def _lower_bounds(
-        self, model: ConvexModel, state: SqpState, shift: ConstraintShift
+        self, model: ConvexModel, state: SqpState, shift: ConstraintShift, layout: QpLayout
     ) -> FloatArray:
         step_lower, _ = self._step_box(model, state)
-        layout = self._layout
         return np.concatenate(
             [
                 -shift.equality,
@@ -626,18 +669,11 @@ class SqpSolver:
         )
 
     def _upper_bounds(
-        self, model: ConvexModel, state: SqpState, shift: ConstraintShift, elastic: bool
+        self, model: ConvexModel, state: SqpState, shift: ConstraintShift, layout: QpLayout
     ) -> FloatArray:
         _, step_upper = self._step_box(model, state)
-        hard = self._options.constraint_handling is ConstraintHandling.HARD and not elastic
-        slack_cap = 0.0 if hard else np.inf
         return np.concatenate(
-            [
-                -shift.equality,
-                -shift.inequality,
-                step_upper,
-                np.full(self._layout.n_slacks, slack_cap),
-            ]
+            [-shift.equality, -shift.inequality, step_upper, np.full(layout.n_slacks, np.inf)]
         )
 
 

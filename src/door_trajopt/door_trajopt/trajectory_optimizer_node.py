@@ -5,10 +5,15 @@ door estimate, joint states and odometry, plans with the motion library (SQP or
 constrained CHOMP), publishes the time-parameterised trajectory on
 ``/trajectory_optimizer/trajectory`` and then a PlanningOutcome (cost, max violation,
 iterations, time, the trajectory's stamp, the door angle it ends at). Missing, stale or
-non-finite inputs and infeasible plans give a failure outcome naming the reason.
+non-finite inputs and infeasible plans give a failure outcome naming the reason. Every
+request whose id can be read gets exactly one outcome; planning runs on a worker thread
+(the robot model is used there only), the newest request or a cancel on
+``/trajectory_optimizer/cancel`` supersedes an older one (:mod:`door_contract.planner_service`).
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 from rclpy.node import Node
@@ -19,12 +24,16 @@ from door_contract.converters.diagnostics import Health
 from door_contract.converters.joint_state import joint_state_to_positions
 
 from door_contract.converters.trajectory import joint_path_to_msg
+from door_contract.door_estimates import door_estimate_problem
 from door_contract.errors import ContractError
-from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
-                                        declare_parameters, run_node)
+from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
+                                        create_contract_subscription, declare_parameters, run_node)
 from door_contract.planner_inputs import PlannerInputs
-from door_contract.stamps import stamp_ns
-from door_contract.payloads import MotionRequest, OutcomeStatus, PlanningOutcome, decode, encode
+from door_contract.planner_desk import PlannerDesk
+from door_contract.planner_service import Finished
+from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
+from door_contract.payloads import (DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, encode,
+                                    without_non_finite)
 from door_contract.topics import Topics
 from door_robot.errors import RobotModelError
 from door_robot.kinematics import RobotKinematics
@@ -32,7 +41,7 @@ from door_robot.profile import Side, load_profile
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import Backend, MotionLibrary, MotionPlan
-from door_trajopt.motions import Motion, MotionOptions, MotionSetup, start_door_for, support_polygon
+from door_trajopt.motions import DoorStateOutOfRange, Motion, MotionOptions, MotionSetup, start_door_for, support_polygon
 from door_trajopt.parameters import NODE_NAME, OPTIMIZER_PARAMETERS
 
 
@@ -40,15 +49,26 @@ class PlanningRefused(Exception):
     """A request that cannot be planned (bad or missing input); the message says why."""
 
 
+@dataclass(frozen=True)
+class Snapshot:
+    """The inputs a request is planned from, taken when it arrives (the measured state)."""
+
+    joint_positions: dict[str, float] | None
+    base_pose: np.ndarray | None
+    estimate: DoorEstimate | None
+
+
 class TrajectoryOptimizerNode(Node):
     def __init__(self) -> None:
         super().__init__(NODE_NAME)
         p = declare_parameters(self, OPTIMIZER_PARAMETERS)
         self.parameters = p
-        self.kinematics = RobotKinematics(load_profile(p["robot_profile"]))
-        self.library = MotionLibrary(MotionOptions(
-            waypoints=p["waypoints"], handle_turn=p["handle_turn"], push_angle=p["push_angle"],
-            pull_angle=p["pull_angle"]), starts=p["initial_guesses"], velocity_scale=p["velocity_scale"])
+        with as_parameter_error(f"parameter 'robot_profile' = {p['robot_profile']!r}", RobotModelError):
+            self.kinematics = RobotKinematics(load_profile(p["robot_profile"]))
+        with as_parameter_error("motion library options", ValueError):
+            self.library = MotionLibrary(MotionOptions(
+                waypoints=p["waypoints"], handle_turn=p["handle_turn"], push_angle=p["push_angle"],
+                pull_angle=p["pull_angle"]), starts=p["initial_guesses"], velocity_scale=p["velocity_scale"])
         self.lever_radius = p["lever_radius"]
         self.joint_positions: dict[str, float] | None = None
         self.heartbeat = Heartbeat(self)
@@ -56,7 +76,10 @@ class TrajectoryOptimizerNode(Node):
         self.trajectory_pub = create_contract_publisher(self, Topics.MOTION_PROPOSAL)
         self.outcome_pub = create_contract_publisher(self, Topics.MOTION_OUTCOME)
         create_contract_subscription(self, Topics.JOINT_STATES, self._on_joint_states)
-        create_contract_subscription(self, Topics.MOTION_REQUEST, self._on_request)
+        self.stamps = UniqueStamps()
+        self.desk = PlannerDesk(self, self.heartbeat, MotionRequest, (Topics.MOTION_REQUEST, Topics.MOTION_CANCEL),
+                                lambda r: self.inputs.doors.pick(r.door_stamp, r.door), self._job_for,
+                                self._deliver_one, lambda rid, why: self._answer(rid, "?", "", OutcomeStatus.REJECTED, why))
         self.get_logger().info(f"ready: {p['robot_profile']}, default backend {p['backend']}")
 
     def _on_joint_states(self, msg: JointState) -> None:
@@ -68,59 +91,68 @@ class TrajectoryOptimizerNode(Node):
 
 
 
-    def _on_request(self, msg: String) -> None:
-        try:
-            request = decode(MotionRequest, msg.data)
-        except ContractError as error:
-            self.get_logger().warning(f"motion request rejected: {error}")
-            return
-        try:
-            plan = self._plan(request)
-        except (PlanningRefused, RobotModelError, ContractError, ValueError) as error:
-            self._answer(request, OutcomeStatus.REJECTED, str(error))
-            return
-        except Exception as error:  # a bug must end in a failure outcome, not a dead node
-            self.get_logger().error(f"request {request.request_id} crashed the optimiser: {error!r}")
-            self._answer(request, OutcomeStatus.FAILURE, f"internal error: {error!r}")
-            return
+    def _job_for(self, request: MotionRequest, estimate: DoorEstimate | None):
+        """The planning job of ``request`` over the inputs as they are now (the measured state)."""
+        base = None if self.inputs.base_pose is None else self.inputs.base_pose.copy()
+        snapshot = Snapshot(None if self.joint_positions is None else dict(self.joint_positions), base, estimate)
+        return lambda: self._plan(request, snapshot)
+
+    def _deliver_one(self, finished: Finished) -> None:
+        """On the executor thread: one outcome per finished request, and the trajectory if proposed."""
+        request, plan = finished.request, finished.result
+        answer = lambda status, reason, plan=None, stamp=-1: self._answer(
+            request.request_id, request.motion, request.backend, status, reason, plan, stamp)
+        if finished.dropped:
+            return answer(OutcomeStatus.SUPERSEDED, finished.dropped)
+        if isinstance(finished.error, (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)):
+            return answer(OutcomeStatus.REJECTED, str(finished.error))
+        if finished.error is not None:  # a bug must end in a failure outcome, not a dead node
+            self.get_logger().error(f"request {request.request_id} crashed the optimiser: {finished.error!r}")
+            return answer(OutcomeStatus.FAILURE, f"internal error: {finished.error!r}")
         if not plan.succeeded:
             result = plan.result
-            reason = (f"{result.outcome.value}: constraint '{result.violated_constraint}' violated by "
-                      f"{result.max_violation:.3g} after {plan.attempts} initial guesses")
-            self._answer(request, OutcomeStatus.FAILURE, reason, plan)
-            return
+            return answer(OutcomeStatus.FAILURE, f"{result.outcome.value}: constraint '{result.violated_constraint}' "
+                          f"violated by {result.max_violation:.3g} after {plan.attempts} initial guesses", plan)
         trajectory = joint_path_to_msg(plan.path)
-        trajectory.header.stamp = self.get_clock().now().to_msg()
+        trajectory.header.stamp = time_msg_of_ns(self.stamps.next(self.get_clock().now().nanoseconds))
         self.trajectory_pub.publish(trajectory)
-        stamp = stamp_ns(trajectory.header.stamp)
-        self._answer(request, OutcomeStatus.SUCCESS, "", plan, proposal_stamp_ns=stamp)
+        answer(OutcomeStatus.SUCCESS, "", plan, stamp_ns(trajectory.header.stamp))
 
-    def _plan(self, request: MotionRequest) -> MotionPlan:
+    def _plan(self, request: MotionRequest, snapshot: Snapshot) -> MotionPlan:
+        """On the worker thread (the only user of the robot model and the library)."""
         try:
             motion = Motion(request.motion)
         except ValueError:
             raise PlanningRefused(f"unknown motion {request.motion!r}; known: "
                                   + ", ".join(m.value for m in Motion)) from None
-        estimate = self.inputs.doors.pick(request.door_stamp, request.door)
+        estimate = snapshot.estimate
         if estimate is None:
             raise PlanningRefused("no door estimate yet" if request.door_stamp < 0 else
                                   f"door estimate of stamp {request.door_stamp:.3f} s was not received")
-        if self.joint_positions is None or self.inputs.base_pose is None:
+        if door_estimate_problem(estimate):
+            raise PlanningRefused(door_estimate_problem(estimate))
+        if snapshot.joint_positions is None or snapshot.base_pose is None:
             raise PlanningRefused("no valid joint states / odometry yet")
-        backend = Backend(request.backend or self.parameters["backend"])
+        if request.opening not in ("push", "pull"):
+            raise PlanningRefused(f"unknown opening {request.opening!r}; use 'push' or 'pull'")
+        try:
+            backend = Backend(request.backend or self.parameters["backend"])
+        except ValueError:
+            raise PlanningRefused(f"unknown backend {request.backend!r}; use 'sqp' or 'chomp'") from None
         body_q = self.kinematics.configuration(
-            {k: v for k, v in self.joint_positions.items() if k in self.kinematics.joint_names})
+            {k: v for k, v in snapshot.joint_positions.items() if k in self.kinematics.joint_names})
         hand = Side(estimate.hinge_side.grasp_hand(request.opening))
         side = hand.other if motion.uses_other_arm else hand
         chain = ArmChain(self.kinematics, side, body_q)
-        door = door_model_from_estimate(estimate, np.linalg.inv(self.inputs.base_pose),
+        door = door_model_from_estimate(estimate, np.linalg.inv(snapshot.base_pose),
                                         push=request.opening == "push", lever_radius=self.lever_radius)
         setup = MotionSetup(chain, door, estimate.width, support_polygon(chain),
                             start_door_for(motion, request.door_angle, self.library.options))
         self.get_logger().info(f"planning {motion.value} with the {side.value} arm ({backend.value})")
-        return self.library.plan(motion, setup, chain.chain_of(body_q), backend, variant=request.request_id)
+        return self.library.plan(motion, setup, chain.chain_of(body_q), backend, variant=request.request_id,
+                                 attempt=request.attempt)
 
-    def _answer(self, request: MotionRequest, status: OutcomeStatus, reason: str,
+    def _answer(self, request_id: int, motion: str, backend: str, status: OutcomeStatus, reason: str,
                 plan: MotionPlan | None = None, proposal_stamp_ns: int = -1) -> None:
         details = {"stamp_ns": proposal_stamp_ns}
         if plan is not None:
@@ -129,24 +161,29 @@ class TrajectoryOptimizerNode(Node):
                            iterations=result.iterations, attempts=plan.attempts,
                            door_angle=round(plan.final_door[0], 5),
                            duration_s=round(float(plan.path.times[-1]), 3) if plan.path else 0.0,
-                           backend=request.backend or self.parameters["backend"])
+                           backend=backend or self.parameters["backend"])
             if plan.path is not None:  # for the report's before/after plot (seed 000 Fig. 4)
                 k = len(plan.path.joint_names)
                 details.update(joint_names=list(plan.path.joint_names),
                                initial_guess=np.round(plan.initial_guess[:, :k], 4).tolist(),
                                optimised=np.round(plan.result.trajectory[:, :k], 4).tolist())
-        outcome = PlanningOutcome(request.request_id, status, reason,
-                                  plan.planning_time_s if plan else 0.0, details)
+        outcome = PlanningOutcome(request_id, status, reason, plan.planning_time_s if plan else 0.0,
+                                  without_non_finite(details))  # a diverged plan's NaN cost must not stop it
         self.outcome_pub.publish(String(data=encode(outcome)))
-        line = f"request {request.request_id} ({request.motion}): {status.value}"
+        line = f"request {request_id} ({motion}): {status.value}"
         if status is OutcomeStatus.SUCCESS:  # rclpy forbids one call site logging at two severities
             self.get_logger().info(f"{line} in {plan.planning_time_s * 1000:.0f} ms ({plan.result.iterations} "
                                    f"iterations, guess {plan.attempts}; {plan.result.message or 'converged'})")
         else:
             self.get_logger().warning(f"{line}: {reason}")
         self.heartbeat.update(Health.OK if status is OutcomeStatus.SUCCESS else Health.WARN,
-                              f"last: {request.motion} {status.value}",
+                              f"last: {motion} {status.value}",
                               last_planning_ms=round(plan.planning_time_s * 1000.0, 1) if plan else "-")
+
+
+    def destroy_node(self) -> None:
+        self.desk.close()
+        super().destroy_node()
 
 
 def main(args: list[str] | None = None) -> int:

@@ -36,6 +36,8 @@ def _block_pattern(at: Sequence[int], rows: int, m: int, n: int) -> sp.csr_matri
 
 
 def _callbacks(function: WaypointFunction, at: Sequence[int], rows: int, m: int, n: int):
+    """Value, Jacobian and Jacobian-data callbacks. The data are the blocks' entries block by
+    block, row-major: with increasing waypoints that is the CSR order of the pattern."""
     at = tuple(at)
     row_index, col_index = _block_indices(at, rows, m)
     shape = (rows * len(at), n * m)
@@ -43,22 +45,24 @@ def _callbacks(function: WaypointFunction, at: Sequence[int], rows: int, m: int,
     def value(trajectory: np.ndarray) -> np.ndarray:
         return np.concatenate([function(trajectory[t], False)[0] for t in at])
 
-    def jacobian(trajectory: np.ndarray) -> sp.csr_matrix:
-        entries = np.concatenate([function(trajectory[t], True)[1].ravel() for t in at])
-        return sp.csr_matrix((entries, (row_index, col_index)), shape=shape)
+    def data(trajectory: np.ndarray) -> np.ndarray:
+        return np.concatenate([function(trajectory[t], True)[1].ravel() for t in at])
 
-    return value, jacobian
+    def jacobian(trajectory: np.ndarray) -> sp.csr_matrix:
+        return sp.csr_matrix((data(trajectory), (row_index, col_index)), shape=shape)
+
+    return value, jacobian, (data if list(at) == sorted(set(at)) else None)
 
 
 def waypoint_constraint(name: str, kind: ConstraintKind, function: WaypointFunction, rows: int,
                         at: Sequence[int], m: int, n: int) -> Constraint:
-    value, jacobian = _callbacks(function, at, rows, m, n)
-    return Constraint(name, kind, rows * len(at), value, jacobian, _block_pattern(at, rows, m, n))
+    value, jacobian, data = _callbacks(function, at, rows, m, n)
+    return Constraint(name, kind, rows * len(at), value, jacobian, _block_pattern(at, rows, m, n), data)
 
 
 def waypoint_cost(name: str, function: WaypointFunction, rows: int, at: Sequence[int], m: int, n: int,
                   weight: float) -> ResidualCost:
-    value, jacobian = _callbacks(function, at, rows, m, n)
+    value, jacobian, _ = _callbacks(function, at, rows, m, n)
     return ResidualCost(name, rows * len(at), value, jacobian, weight, _block_pattern(at, rows, m, n))
 
 
@@ -72,4 +76,6 @@ def fixed_dof(name: str, dof: int, values: dict[int, float], m: int, n: int) -> 
     def value(trajectory: np.ndarray) -> np.ndarray:
         return trajectory[list(times), dof] - targets
 
-    return Constraint(name, ConstraintKind.EQUALITY, len(times), value, lambda _: rows, rows.astype(bool))
+    ones = np.ones(len(times))
+    return Constraint(name, ConstraintKind.EQUALITY, len(times), value, lambda _: rows, rows.astype(bool),
+                      lambda _: ones)

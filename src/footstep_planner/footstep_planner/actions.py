@@ -30,6 +30,7 @@ from footstep_planner.footstep import Foot, Footstep
 from footstep_planner.geometry import (FloatArray, PackedPolygons, rectangle_axes,
                                        rectangle_corners, rectangles_overlap_polygons)
 from footstep_planner.options import FootstepPlannerOptions
+from footstep_planner.progress import StepEffects
 
 
 @dataclass(frozen=True)
@@ -71,13 +72,18 @@ CLOSING_STEP = StepAction(0.0, 0.0, 0.0)
 """Places the swing foot beside the support foot in the nominal stance."""
 
 
+CLEARANCE_STEP = 0.005
+"""Resolution (m) of the outward shift that lets a turning sole clear the support sole."""
+
+
 def candidate_actions(options: FootstepPlannerOptions) -> tuple[StepAction, ...]:
     """Straight steps, side steps, diagonal steps and turns scaled to the options' limits.
 
     Forward lengths are sixths of ``max_stride`` and thirds of
     ``max_backward_step`` (0.05 m apart for TALOS); side steps are thirds of
     ``max_side_step`` plus one inward step to ``min_foot_separation``; turns
-    are +-max_turn and +-max_turn/2, in place and walking.
+    are +-max_turn and +-max_turn/2, in place and walking, each moved outward
+    just enough to clear the support sole (:func:`cleared_turn`).
     """
     stride, back, side, turn = (options.max_stride, options.max_backward_step,
                                 options.max_side_step, options.max_turn)
@@ -88,10 +94,33 @@ def candidate_actions(options: FootstepPlannerOptions) -> tuple[StepAction, ...]
     inward = options.min_foot_separation - options.nominal_foot_separation
     actions += [StepAction(0.0, inward, 0.0)] if inward < 0.0 else []
     actions += [StepAction(stride * i / 3.0, side * j / 3.0, 0.0) for i in (1, 2) for j in (1, 2)]
-    actions += [StepAction(stride * f, 0.0, sign * turn * t)
-                for f in (0.0, 0.5, 5.0 / 6.0) for t in (0.5, 1.0) for sign in (1.0, -1.0)]
+    turns = (cleared_turn(StepAction(stride * f, 0.0, sign * turn * t), options)
+             for f in (0.0, 0.5, 5.0 / 6.0) for t in (0.5, 1.0) for sign in (1.0, -1.0))
+    actions += [a for a in turns if a is not None]
     unique = dict.fromkeys(actions)  # keeps order, drops duplicates (e.g. zero side step)
     return tuple(a for a in unique if is_kinematically_valid(a, options))
+
+
+def cleared_turn(action: StepAction, options: FootstepPlannerOptions) -> StepAction | None:
+    """``action`` moved outward by the smallest multiple of :data:`CLEARANCE_STEP` that makes
+    it kinematically valid, or None when no shift up to ``max_side_step`` does.
+
+    A turn rotates the swing sole about its centre.  Turning by tau brings one
+    inner corner, at (+-l, -w) in the sole's frame (l, w the half length and
+    width grown by foot_margin), closer to the support sole by about
+    ``l |sin tau| - w (1 - cos tau)``: toe-out swings the heel in, toe-in the
+    toe.  With the soles close together (TALOS: 0.17 m apart, 0.13 m wide,
+    a 0.02 m margin leaves 0.02 m) a full turn in place then overlaps the
+    support sole, and without the shift the only valid turns in place were
+    half turns: a quarter turn took ten steps where five suffice.
+    """
+    outward = action.outward
+    while outward <= action.outward + options.max_side_step + 1e-12:
+        shifted = StepAction(action.forward, outward, action.turn)
+        if is_kinematically_valid(shifted, options):
+            return shifted
+        outward += CLEARANCE_STEP
+    return None
 
 
 def is_kinematically_valid(action: StepAction, options: FootstepPlannerOptions) -> bool:
@@ -201,10 +230,10 @@ class ActionSet:
     body_reach: float
 
     @property
-    def centre_shifts(self) -> FloatArray:
-        """(2K, 2) stance-centre shifts of all actions of both feet, in the support frame."""
-        return np.concatenate([table.centre - table.support_centre
-                               for table in self.tables.values()])
+    def step_effects(self) -> Mapping[Foot, StepEffects]:
+        """Per swing foot, how its actions move the stance centre (support frame) and turn."""
+        return MappingProxyType({foot: StepEffects(table.centre - table.support_centre, table.foot[:, 2])
+                                 for foot, table in self.tables.items()})
 
     @classmethod
     def from_options(cls, options: FootstepPlannerOptions) -> ActionSet:

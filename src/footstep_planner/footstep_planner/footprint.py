@@ -38,21 +38,6 @@ class FootprintChecker:
         return self.world.rectangles_collide(x, y, yaw, 2.0 * options.body_half_depth,
                                              2.0 * options.body_half_width, options.body_margin)
 
-    def soles_and_bodies_collide(self, soles: tuple[FloatArray, FloatArray, FloatArray],
-                                 bodies: tuple[FloatArray, FloatArray, FloatArray]
-                                 ) -> tuple[BoolArray, BoolArray]:
-        """:meth:`soles_collide` and :meth:`bodies_collide` in one batched test."""
-        options = self.options
-        count = len(soles[0])
-        x, y, yaw = (np.concatenate((sole, body)) for sole, body in zip(soles, bodies))
-        sizes = np.empty((3, len(x)))
-        sizes[:, :count] = np.array([[options.foot_length], [options.foot_width],
-                                     [options.foot_margin]])
-        sizes[:, count:] = np.array([[2.0 * options.body_half_depth],
-                                     [2.0 * options.body_half_width], [options.body_margin]])
-        hits = self.world.rectangles_collide(x, y, yaw, sizes[0], sizes[1], sizes[2])
-        return hits[:count], hits[count:]
-
     def footstep_collides(self, step: Footstep) -> bool:
         """Does this sole touch an obstacle?"""
         return bool(self.soles_collide(np.array([step.x]), np.array([step.y]),

@@ -7,7 +7,7 @@ the planner's speed.  Polygons are convex, counter-clockwise, shape (K, 2).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -118,6 +118,14 @@ class PackedPolygons:
     normal_ranges: FloatArray
     box_min: FloatArray
     box_max: FloatArray
+    flat_normals: FloatArray = field(init=False, repr=False)
+    """(2, M K) the normals as columns, for one matrix product per batch."""
+    flat_vertices: FloatArray = field(init=False, repr=False)
+    """(2, M K) the vertices as columns."""
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "flat_normals", np.ascontiguousarray(self.normals.reshape(-1, 2).T))
+        object.__setattr__(self, "flat_vertices", np.ascontiguousarray(self.vertices.reshape(-1, 2).T))
 
     @classmethod
     def pack(cls, polygons: list[FloatArray]) -> PackedPolygons:
@@ -178,6 +186,32 @@ def rectangles_overlap_polygons(centres: FloatArray, axes: FloatArray, half_exte
         separated |= ((on_axis.max(axis=2) < centre - extent)
                       | (on_axis.min(axis=2) > centre + extent))
     return ~separated[:count]
+
+
+def rectangles_touch_any(x: FloatArray, y: FloatArray, yaw: FloatArray, half_length: FloatArray,
+                         half_width: FloatArray, polygons: PackedPolygons) -> BoolArray:
+    """Does each of N rectangles overlap (or touch) any of the polygons?  Shape (N,).
+
+    The test of :func:`rectangles_overlap_polygons` written for the planner's inner loop:
+    the rectangles' two axes a = (cos, sin), b = (-sin, cos) meet all M K polygon normals
+    and vertices in four matrix products, with no per-call packing of axes or subsets.
+    """
+    count, shape = len(x), (len(x), polygons.count, -1)
+    cos_yaw, sin_yaw = np.cos(yaw), np.sin(yaw)
+    along = np.column_stack((cos_yaw, sin_yaw))
+    across = np.column_stack((-sin_yaw, cos_yaw))
+    normals, vertices = polygons.flat_normals, polygons.flat_vertices
+    centre_on_normals = np.column_stack((x, y)) @ normals
+    reach = np.abs(along @ normals) * half_length[:, None] + np.abs(across @ normals) * half_width[:, None]
+    ranges = polygons.normal_ranges.reshape(-1, 2)
+    separated = ((centre_on_normals + reach < ranges[:, 0]) | (centre_on_normals - reach > ranges[:, 1]))
+    separated = separated.reshape(shape).any(axis=2)
+    for axis, half, centre in ((along, half_length, x * cos_yaw + y * sin_yaw),
+                               (across, half_width, y * cos_yaw - x * sin_yaw)):
+        on_axis = (axis @ vertices).reshape(shape)
+        separated |= ((on_axis.max(axis=2) < (centre - half)[:, None])
+                      | (on_axis.min(axis=2) > (centre + half)[:, None]))
+    return ~separated.all(axis=1) if count else np.zeros(0, dtype=bool)
 
 
 def rectangle_axes(yaw: FloatArray) -> FloatArray:

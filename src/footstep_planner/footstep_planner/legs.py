@@ -2,41 +2,63 @@
 
 Used where the order of the poses matters and a single search would cut the corner, as in
 the pull door's passage (:func:`~footstep_planner.goals.pull_passage_waypoints`): the turn
-in place is what sweeps the door open.
+in place is what sweeps the door open; and where one leg must keep the body's heading, as
+through a doorway narrower than the body (:mod:`~footstep_planner.narrow`).
 """
 
 from __future__ import annotations
 
 import time
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
 from footstep_planner.plan import FootstepPlan, PlanOutcome, PlanResult
+from footstep_planner.pruning import LegPruning
 
 
-def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2D]) -> PlanResult:
+@dataclass(frozen=True)
+class Leg:
+    """One search of a walk: to ``goal``, keeping the states ``pruning`` keeps (default:
+    all; see :mod:`~footstep_planner.pruning`)."""
+
+    goal: Pose2D
+    name: str = ""
+    pruning: LegPruning = LegPruning()
+
+    @classmethod
+    def of(cls, waypoint: Pose2D | Leg) -> Leg:
+        """A leg to a bare pose, with any heading; a leg unchanged."""
+        return waypoint if isinstance(waypoint, Leg) else cls(waypoint)
+
+
+def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2D | Leg],
+              attempt: int = 0) -> PlanResult:
     """Plan start → waypoints[0] → … → waypoints[-1]; each leg starts from the stance the
     previous one ended in. The feet keep alternating across legs: when a leg would begin
     with the foot that ended the previous one, the other foot first steps in place.
 
     The first leg that fails ends the request with its outcome, its reason prefixed by
-    the leg's number; expansions and time are totals over the legs planned.
+    the leg's number (and name); expansions and time are totals over the legs planned.
+    Every leg gets the expansion budget of ``attempt`` (:meth:`FootstepPlanner.plan`).
     """
     started = time.perf_counter()
     if not waypoints:
         return PlanResult(PlanOutcome.INVALID_GOAL, "no waypoints to walk through", None, 0, 0.0)
     stance, steps, cost, expansions = start, [], 0.0, 0
-    for number, waypoint in enumerate(waypoints, start=1):
-        result = planner.plan(stance, waypoint)
+    legs = [Leg.of(waypoint) for waypoint in waypoints]
+    for number, leg in enumerate(legs, start=1):
+        result = planner.plan(stance, leg.goal, leg.pruning, attempt=attempt)
         expansions += result.expansions
         if not result.succeeded:
-            return PlanResult(result.outcome, f"leg {number} of {len(waypoints)}: {result.reason}", None,
+            label = f"leg {number} of {len(legs)}" + (f" ({leg.name})" if leg.name else "")
+            return PlanResult(result.outcome, f"{label}: {result.reason}", None,
                               expansions, time.perf_counter() - started)
         steps.extend(_alternating(steps, stance, result.plan.steps))
         stance, cost = result.plan.final_stance, cost + result.plan.cost
     elapsed = time.perf_counter() - started
-    plan = FootstepPlan(start, waypoints[-1], tuple(steps), cost, expansions, elapsed)
+    plan = FootstepPlan(start, legs[-1].goal, tuple(steps), cost, expansions, elapsed)
     return PlanResult(PlanOutcome.SUCCESS, "", plan, expansions, elapsed)
 
 

@@ -57,10 +57,20 @@ class FootstepPlannerOptions:
     heuristic_weight: float = 1.0
     """Weight w of the heuristic: 1 is A* (optimal), > 1 weighted A* (cost <= w * optimal),
     [1, 10]."""
-    max_expansions: int = 200_000
-    """Bound on expanded states; the search stops with EXPANSION_LIMIT beyond it, [1, 1e7]."""
-    max_planning_time: float = 2.0
-    """Bound on planning wall time; the search stops with TIME_LIMIT beyond it (s), (0, 600]."""
+    max_expansions: int = 20_000
+    """The search's budget: it stops with EXPANSION_LIMIT after this many expanded states,
+    [1, 1e7].  Deterministic, so a plan never depends on CPU load: every passage leg and
+    approach of the benchmark's full ranges needs a few hundred at most."""
+    max_planning_time: float = 30.0
+    """A safety net on wall time, far above normal use (plans take milliseconds): the search
+    stops with TIME_LIMIT beyond it (s), (0, 600].  The budget is ``max_expansions``."""
+    repeat_budget_growth: float = 2.0
+    """Factor on max_expansions per repeat of a request (:mod:`~footstep_planner.attempts`),
+    [1, 100]."""
+    repeat_weight_step: float = 1.0
+    """Added to heuristic_weight per repeat (a greedier search), [0, 9]."""
+    repeat_margin_growth: float = 1.5
+    """Factor on search_margin per repeat (a wider region), [1, 10]."""
     goal_position_tolerance: float = 0.05
     """Allowed distance of the final stance centre from the goal (m), (0, 1]."""
     goal_yaw_tolerance: float = 0.10
@@ -110,12 +120,21 @@ _RANGES: dict[str, FieldRange] = {
     "heuristic_weight": FieldRange(1.0, 10.0, ""),
     "max_expansions": FieldRange(1, 10_000_000, "expansions"),
     "max_planning_time": FieldRange(0.0, 600.0, "s", low_open=True),
+    "repeat_budget_growth": FieldRange(1.0, 100.0, ""),
+    "repeat_weight_step": FieldRange(0.0, 9.0, ""),
+    "repeat_margin_growth": FieldRange(1.0, 10.0, ""),
     "goal_position_tolerance": FieldRange(0.0, 1.0, "m", low_open=True),
     "goal_yaw_tolerance": FieldRange(0.0, math.pi, "rad", low_open=True),
     "grid_resolution": FieldRange(0.0, 0.5, "m", low_open=True),
     "yaw_resolution": FieldRange(0.0, 0.5, "rad", low_open=True),
     "search_margin": FieldRange(0.0, 50.0, "m", low_open=True),
 }
+
+
+def option_range(name: str) -> FieldRange:
+    """The allowed range of option ``name`` (fixed ranges only; min_foot_separation's depends
+    on other fields)."""
+    return _RANGES[name]
 
 
 def _check_field(name: str, value: object, allowed: FieldRange) -> None:

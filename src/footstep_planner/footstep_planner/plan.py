@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from enum import Enum
 
@@ -73,3 +74,8 @@ class PlanResult:
     def succeeded(self) -> bool:
         """True when a plan was found."""
         return self.outcome is PlanOutcome.SUCCESS
+
+
+def failed(outcome: PlanOutcome, reason: str, expansions: int, started: float) -> PlanResult:
+    """A failed :class:`PlanResult` timed from ``started`` (a ``time.perf_counter()`` value)."""
+    return PlanResult(outcome, reason, None, expansions, time.perf_counter() - started)

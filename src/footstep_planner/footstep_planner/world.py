@@ -10,7 +10,7 @@ import numpy as np
 
 from footstep_planner.geometry import (BoolArray, FloatArray, PackedPolygons, edge_normals,
                                        interior_angles, rectangle_axes,
-                                       rectangles_overlap_polygons)
+                                       rectangles_overlap_polygons, rectangles_touch_any)
 from footstep_planner.obstacles import Obstacle
 
 if TYPE_CHECKING:
@@ -92,8 +92,19 @@ class World:
         counts as a collision).
         """
         x, y, yaw = (np.atleast_1d(np.asarray(v, dtype=float)) for v in (x, y, yaw))
-        hits = self.rectangle_hits(x, y, yaw, length, width, margin)
-        return np.asarray(hits.any(axis=1), dtype=bool)
+        if not self.obstacles:
+            return np.zeros(len(x), dtype=bool)
+        half_length = np.broadcast_to(np.asarray(length) / 2.0 + margin, x.shape).astype(float)
+        half_width = np.broadcast_to(np.asarray(width) / 2.0 + margin, x.shape).astype(float)
+        return rectangles_touch_any(x, y, yaw, half_length, half_width, self._polygons)
+
+    def rectangles_touch(self, x: FloatArray, y: FloatArray, yaw: FloatArray, half_length: FloatArray,
+                         half_width: FloatArray) -> BoolArray:
+        """:meth:`rectangles_collide` for 1-D arrays of half extents (margins included), without
+        any conversion: the planner's inner loop."""
+        if not self.obstacles:
+            return np.zeros(len(x), dtype=bool)
+        return rectangles_touch_any(x, y, yaw, half_length, half_width, self._polygons)
 
     def rectangle_hits(self, x: FloatArray, y: FloatArray, yaw: FloatArray,
                        length: float | FloatArray, width: float | FloatArray,

@@ -1,0 +1,110 @@
+"""Balance against the door: a CoM offset from the measured hand/body forces and the CoP.
+
+**Feed-forward (static moment balance).** A force F applied to the robot at p (the hand on
+the handle, the arm or body against the leaf) moves the centre of pressure q of a robot
+standing still with its CoM at c. Moments about q balance (flat ground, quasi-static) when
+
+    m g (c − q)ₓᵧ + p_z Fₓᵧ − (pₓᵧ − qₓᵧ) F_z = 0,
+
+so a forward push moves the CoP forward, and leaning the CoM by
+Δc_ff = −[p_z Fₓᵧ − (pₓᵧ − rₓᵧ) F_z] / (m g) keeps it at the reference point r
+(ENVIRONMENT.md: a standing TALOS held 100 N at a hand with this lean, and fell without it).
+
+**Feedback (CoP admittance).** What the feed-forward misses (an unmeasured shove, a model
+error) shows as the measured CoP staying away from the reference. The CoP error is first
+low-passed (time constant ``cop_filter_s``: a robot rocking from foot to foot after a walk
+averages out, a sustained push does not — fed back unfiltered, the rocking grew until it
+fell); the part of the filtered error beyond a dead band ``cop_deadband`` is integrated
+into the offset with gain ``cop_gain`` (1/s), and the offset leaks back towards the
+feed-forward with time constant ``leak_time_s`` when the error is inside the band.
+
+Both only act on what exceeds the dead bands: small door forces (a handle's return spring, a
+closer) leave the body still, so a hand on the handle follows its plan exactly — leaning
+against a latched door through the hand would otherwise feed itself. The offset is clamped
+to ``max_offset`` and rate-limited to ``max_rate``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from door_sim_bridge.validation import check_ranges
+
+
+@dataclass(frozen=True)
+class StabilizerOptions:
+    """Gains and limits of the CoM offset (SI units)."""
+
+    force_deadband: float = 0.03  # m of predicted CoP shift the feed-forward ignores standing
+    cop_deadband: float = 0.06  # m of CoP error the feedback ignores (a last resort near the sole edges)
+    cop_gain: float = 0.5  # 1/s, integral gain on the CoP error beyond the dead band
+    cop_filter_s: float = 0.5  # s, low-pass time constant of the CoP error
+    leak_time_s: float = 2.0  # s, the feedback offset decays with this time constant
+    max_offset: float = 0.10  # m, |CoM offset| per axis
+    max_rate: float = 0.20  # m/s, change of the offset
+    walking_feedback: bool = False  # CoP feedback while walking (the measured CoP is noisy then)
+
+    def __post_init__(self) -> None:
+        check_ranges(self, {"force_deadband": (0.0, 0.2, "m"), "cop_deadband": (0.0, 0.2, "m"),
+                            "cop_gain": (0.0, 50.0, "1/s"), "cop_filter_s": (0.0, 10.0, "s"), "leak_time_s": (0.05, 100.0, "s"),
+                            "max_offset": (0.0, 0.2, "m"), "max_rate": (0.001, 5.0, "m/s")})
+
+
+@dataclass(frozen=True, eq=False)
+class ContactWrench:
+    """The net external force on the robot (N, world axes) and its application point (m)."""
+
+    force: np.ndarray
+    point: np.ndarray
+
+    @staticmethod
+    def none() -> ContactWrench:
+        return ContactWrench(np.zeros(3), np.zeros(3))
+
+
+def feed_forward_offset(wrench: ContactWrench, reference: np.ndarray, weight: float) -> np.ndarray:
+    """Δc_ff (xy, m) of the module docstring; ``weight`` = m g (N)."""
+    force, point = wrench.force, wrench.point
+    moment_arm = point[2] * force[:2] - (point[:2] - reference[:2]) * force[2]
+    return -moment_arm / weight
+
+
+def beyond(value: np.ndarray, band: float) -> np.ndarray:
+    """The part of each component of ``value`` outside [−band, band]."""
+    return value - np.clip(value, -band, band)
+
+
+class Stabilizer:
+    """The CoM offset, updated once per control tick (state: the feedback integral)."""
+
+    def __init__(self, options: StabilizerOptions, weight: float) -> None:
+        self.options = options
+        self._weight = weight
+        self._feedback = np.zeros(2)
+        self._cop_error = np.zeros(2)
+        self.offset = np.zeros(2)
+
+    def reset(self) -> None:
+        self._feedback = np.zeros(2)
+        self._cop_error = np.zeros(2)
+        self.offset = np.zeros(2)
+
+    def update(self, dt: float, reference: np.ndarray, wrench: ContactWrench, cop: np.ndarray | None,
+               walking: bool) -> np.ndarray:
+        """New CoM offset (xy, m) for the ZMP ``reference`` (xy), the external ``wrench`` and the
+        measured ``cop`` (xy, None in the air)."""
+        options = self.options
+        ff = feed_forward_offset(wrench, reference, self._weight)
+        if not walking:  # on one foot the polygon is too small to leave part of a force uncompensated
+            ff = beyond(ff, options.force_deadband)
+        if cop is not None and (options.walking_feedback or not walking):
+            smoothing = min(1.0, dt / options.cop_filter_s) if options.cop_filter_s > 0.0 else 1.0
+            self._cop_error += smoothing * (np.asarray(cop[:2]) - reference[:2] - self._cop_error)
+            self._feedback -= options.cop_gain * beyond(self._cop_error, options.cop_deadband) * dt
+        self._feedback *= max(0.0, 1.0 - dt / options.leak_time_s)
+        target = np.clip(ff + self._feedback, -options.max_offset, options.max_offset)
+        step = np.clip(target - self.offset, -options.max_rate * dt, options.max_rate * dt)
+        self.offset = self.offset + step
+        return self.offset

@@ -1,0 +1,95 @@
+"""The physical robot's low-level control loop, as the simulated hardware runs it.
+
+Before every physics step it measures (sole poses, the centre of pressure on the floor, the
+door's forces on the robot), lets the walking controller compute joint targets (legs from
+balance, upper body from the commands) and sends them to the position motors. After the
+step it checks for a fall; a fallen robot's motors go slack and stay so.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+
+import numpy as np
+
+from door_contract.converters.footsteps import Foot, FootPlacement
+from door_robot.profile import Side
+from door_sim_bridge.walking.controller import BalanceMode, Measurement, WalkingController
+from door_sim_bridge.world.client import PhysicsClient
+from door_sim_bridge.world.config import WorldConfig
+from door_sim_bridge.world.hardware import centre_of_pressure, contact_forces, fall_reason, net_wrench
+from door_sim_bridge.world.robot import SimRobot
+
+FOOT_OF_SIDE = {Side.LEFT: Foot.LEFT, Side.RIGHT: Foot.RIGHT}
+
+
+class BalanceLoop:
+    """Walking controller + sensors + motors of the physical robot (one per world)."""
+
+    def __init__(self, client: PhysicsClient, robot: SimRobot, floor: int, door_body: int,
+                 config: WorldConfig, holding: Callable[[Side], bool]) -> None:
+        self._client, self._robot, self._floor, self._door = client, robot, floor, door_body
+        self._config, self._holding = config, holding
+        self.controller = WalkingController(robot.urdf_text, robot.profile, config.gait, config.stabilizer,
+                                            config.time_step)
+        self.fall: str | None = None
+        self.controller.start(robot.joint_positions(), robot.base_pose())
+
+    # ------------------------------------------------------------------ per physics step
+    def measure(self) -> Measurement:
+        soles = {FOOT_OF_SIDE[side]: self._robot.link_pose(link) for side, link in self._robot.profile.feet.items()}
+        return Measurement(soles, centre_of_pressure(self._client, self._robot.body, self._floor),
+                           net_wrench(self._door_forces()), self._robot.base_pose()[:3, :3])
+
+    def _door_forces(self) -> list[tuple[np.ndarray, np.ndarray]]:
+        """Forces on the robot the stabiliser may lean against: every link's contacts with the
+        door's body but the hands'; a hand's wrist sensor (at the TCP) while it holds the
+        handle, or while walking (the blocking hand on the leaf).
+
+        Not a hand pressing a latched door while standing: leaning against it presses the
+        hand harder, the force grows, the lean with it (seen: 118 N and a 10 cm lean off a
+        mis-placed approach). The CoP feedback still catches what that leaves out.
+        """
+        hands = {side: self._robot.hand_links(side) for side in self._robot.profile.arms}
+        every_hand = set().union(*hands.values())
+        body = [(force, point) for link, force, point in
+                contact_forces(self._client, self._robot.body, self._door) if link not in every_hand]
+        gravity, walking = self._config.gravity, self.walking
+        return body + [(self._robot.wrist_force(side, gravity), self._robot.tcp_pose(side)[:3, 3])
+                       for side in hands if walking or self._holding(side)]
+
+    def control(self) -> None:
+        """Set this step's joint targets (nothing once fallen)."""
+        if self.fall is None:
+            self._robot.set_joint_targets(self.controller.tick(self.measure()))
+
+    def check_fall(self) -> str | None:
+        """After a step: the reason when the robot has just fallen (once), else None."""
+        if self.fall is not None:
+            return None
+        reason = fall_reason(self._robot.base_pose(), self._robot.profile.base_height, self._config.fall)
+        if reason is not None:
+            self.fall = reason
+            self._robot.go_limp()
+        return reason
+
+    # ------------------------------------------------------------------ commands
+    def set_upper_body(self, targets: Mapping[str, float]) -> None:
+        self.controller.set_upper_body(targets)
+
+    def walk(self, steps: Sequence[FootPlacement]) -> float:
+        """Start walking ``steps``; the walk's duration in s (0: nothing to walk)."""
+        return self.controller.walk(steps, self.measure().soles)
+
+    def stop_walking(self) -> None:
+        self.controller.stop()
+
+    @property
+    def walking(self) -> bool:
+        """Stepping, or settling over the feet after the last step (a plan made from the
+        pose while settling would miss by the settling motion, up to ~10 cm)."""
+        return self.controller.mode is BalanceMode.WALKING or self.controller.settling
+
+    def centre_of_mass(self) -> np.ndarray:
+        """The controller model's CoM (odom, m)."""
+        return np.array(self.controller.robot.com_world())

@@ -1,0 +1,88 @@
+"""What the physical robot's sensors would report: foot contacts, door forces, falls.
+
+* **Centre of pressure** of the soles on the floor: the normal-force-weighted mean of the
+  contact points (the measured ZMP on flat ground).
+* **External wrench** from the door: every contact between a robot link and the door's body
+  (leaf, frame, handle), normal and friction forces, plus the hands' wrist force sensors. Summed into one force and a force-weighted point of application — what the
+  stabiliser feeds forward (:mod:`door_sim_bridge.walking.stabilizer`).
+* **Falls**: the base below a fraction of its nominal height, or tilted too far.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+
+import numpy as np
+import pybullet
+
+from door_sim_bridge.walking.stabilizer import ContactWrench
+from door_sim_bridge.world.client import PhysicsClient
+from door_sim_bridge.world.config import FallConfig
+
+MIN_SUPPORT_FORCE = 1.0  # N of floor contact below which the robot is in the air
+
+
+def make_floor(client: PhysicsClient, friction: float) -> int:
+    """An infinite static plane z = 0 that collides (the scene's floor is visual only)."""
+    shape = client.createCollisionShape(pybullet.GEOM_PLANE)
+    floor = client.createMultiBody(0.0, shape)
+    client.changeDynamics(floor, -1, lateralFriction=friction)
+    return floor
+
+
+def centre_of_pressure(client: PhysicsClient, robot: int, floor: int) -> np.ndarray | None:
+    """(x, y) of the robot's floor contacts, weighted by normal force; None in the air."""
+    contacts = client.getContactPoints(bodyA=robot, bodyB=floor)
+    total = sum(contact[9] for contact in contacts)
+    if total < MIN_SUPPORT_FORCE:
+        return None
+    return sum(contact[9] * np.array(contact[5][:2]) for contact in contacts) / total
+
+
+def floor_links(client: PhysicsClient, robot: int, floor: int) -> set[int]:
+    """Links of the robot touching the floor."""
+    return {contact[3] for contact in client.getContactPoints(bodyA=robot, bodyB=floor)}
+
+
+def contact_forces(client: PhysicsClient, robot: int, other: int) -> list[tuple[int, np.ndarray, np.ndarray]]:
+    """(robot link, force on the robot, point) of every contact between ``robot`` and ``other``.
+
+    PyBullet's contact normal is on B pointing towards A (the robot), so the normal force
+    pushes the robot along it; the two friction forces act along their directions on A.
+    """
+    forces = []
+    for contact in client.getContactPoints(bodyA=robot, bodyB=other):
+        force = (contact[9] * np.array(contact[7]) + contact[10] * np.array(contact[11])
+                 + contact[12] * np.array(contact[13]))
+        forces.append((contact[3], force, np.array(contact[5])))
+    return forces
+
+
+def net_wrench(forces: Iterable[tuple[np.ndarray, np.ndarray]]) -> ContactWrench:
+    """One force and its force-weighted point of application (the moment about that point is
+    dropped: what the static feed-forward needs is the force and roughly where it acts)."""
+    items = [(np.asarray(f, dtype=float), np.asarray(p, dtype=float)) for f, p in forces]
+    if not items:
+        return ContactWrench.none()
+    total = sum(force for force, _ in items)
+    weights = np.array([np.linalg.norm(force) for force, _ in items])
+    if weights.sum() < 1e-9:
+        return ContactWrench.none()
+    point = sum(w * p for w, (_, p) in zip(weights, items)) / weights.sum()
+    return ContactWrench(total, point)
+
+
+def tilt(base_pose: np.ndarray) -> float:
+    """Angle (rad) between the base's z axis and the vertical."""
+    return math.acos(min(1.0, max(-1.0, float(base_pose[2, 2]))))
+
+
+def fall_reason(base_pose: np.ndarray, nominal_height: float, options: FallConfig) -> str | None:
+    """Why the robot counts as fallen, or None."""
+    height = float(base_pose[2, 3])
+    if height < options.height_fraction * nominal_height:
+        return f"base at {height:.2f} m (below {options.height_fraction:g} × {nominal_height:.2f} m)"
+    if tilt(base_pose) > options.max_tilt:
+        return f"base tilted {math.degrees(tilt(base_pose)):.0f}° (more than {math.degrees(options.max_tilt):.0f}°)"
+    return None

@@ -1,0 +1,49 @@
+"""What the FSM knows about the door between states, and the planner requests built from it.
+
+The estimate DETECT_DOOR proposed is the one every later request names (later estimates,
+seen up close while walking, do not silently replace what the operator approved); the
+hinge angle is the one the last *executed* door motion planned to leave.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from door_contract.payloads import DoorEstimate, FootstepRequest, MotionRequest, PlanningOutcome, encode
+from door_fsm import actions as act
+
+
+@dataclass
+class DoorContext:
+    opening: str  # "push" | "pull"
+    backend: str  # "sqp" | "chomp"
+    latest: DoorEstimate | None = None
+    approved: DoorEstimate | None = None
+    angle: float = 0.0          # rad, as left by the last executed door motion
+    planned_angle: float = 0.0  # rad, at the end of the motion being executed
+
+    def footstep_request(self, action: act.RequestFootsteps) -> FootstepRequest:
+        return FootstepRequest(action.request_id, action.goal, self.opening, self.angle,
+                               self._approved_stamp(), self._approved_json(), attempt=action.attempt)
+
+    def motion_request(self, action: act.RequestMotion) -> MotionRequest:
+        return MotionRequest(action.request_id, action.motion, self.opening, self.backend, self.angle,
+                             self._approved_stamp(), self._approved_json(), attempt=action.attempt)
+
+    def grasp_hand(self) -> str:
+        door = self.approved or self.latest
+        return door.hinge_side.grasp_hand(self.opening) if door else "right"
+
+    def planned(self, outcome: PlanningOutcome) -> None:
+        """A motion proposal says where it leaves the door."""
+        if isinstance(outcome.details.get("door_angle"), (int, float)):
+            self.planned_angle = float(outcome.details["door_angle"])
+
+    def executed(self) -> None:
+        self.angle = self.planned_angle
+
+    def _approved_stamp(self) -> float:
+        return self.approved.stamp if self.approved is not None else -1.0
+
+    def _approved_json(self) -> str:
+        return encode(self.approved) if self.approved is not None else ""

@@ -1,0 +1,72 @@
+"""The FSM's two clocks and its per-attempt records (Table I), ROS-free.
+
+Each phase's deadline and time runs on the clock of what it waits for (docs/CLOCKS.md):
+planning and the operator's answer on the **wall** clock (planners compute and people read
+in real time, whatever the simulation's speed), execution on the **robot** clock (sim time
+under ``use_sim_time``: a 40-step walk takes 40 step times of the robot's time, however
+fast the simulation runs on this machine).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from enum import Enum
+
+from door_fsm.states import Phase, StateOutcome, TaskState
+
+
+class Clock(str, Enum):
+    WALL = "wall"    # steady (monotonic) seconds
+    ROBOT = "robot"  # the robot's time: /clock under use_sim_time, else the system clock
+
+
+PHASE_CLOCK = {Phase.PLANNING: Clock.WALL, Phase.AWAITING_APPROVAL: Clock.WALL, Phase.EXECUTING: Clock.ROBOT}
+
+
+@dataclass(frozen=True)
+class Instant:
+    """One moment read on both clocks (s)."""
+
+    wall: float
+    robot: float
+
+    def on(self, clock: Clock) -> float:
+        return self.wall if clock is Clock.WALL else self.robot
+
+    def later(self, seconds: float) -> Instant:
+        """Both clocks advanced by ``seconds`` (for tests and simulations of the machine)."""
+        return Instant(self.wall + seconds, self.robot + seconds)
+
+
+@dataclass
+class StateRecord:
+    """One attempt at one state, for the Table I report (times in seconds, see PHASE_CLOCK)."""
+
+    state: TaskState
+    attempt: int  # 1 for the first try (the request's ``attempt`` is this − 1)
+    started: Instant
+    outcome: StateOutcome | None = None
+    planning_s: float = 0.0  # wall clock
+    waiting_s: float = 0.0   # wall clock
+    moving_s: float = 0.0    # robot clock
+    reason: str = ""
+    summary: dict = field(default_factory=dict)
+
+    def add(self, phase: Phase, seconds: float) -> None:
+        if phase is Phase.PLANNING:
+            self.planning_s += seconds
+        elif phase is Phase.AWAITING_APPROVAL:
+            self.waiting_s += seconds
+        else:
+            self.moving_s += seconds
+
+    def as_dict(self) -> dict:
+        return {"state": self.state.label, "attempt": self.attempt,
+                "outcome": self.outcome.value if self.outcome else "unfinished",
+                "planning_s": round(self.planning_s, 4), "waiting_s": round(self.waiting_s, 4),
+                "moving_s": round(self.moving_s, 4), "reason": self.reason, "summary": self.summary}
+
+
+def clocks_note(robot_clock: str) -> str:
+    """What the TaskReport's times are measured on; ``robot_clock`` is "sim" or "wall"."""
+    return f"planning_s, waiting_s: wall clock (steady); moving_s: robot clock ({robot_clock} time)"

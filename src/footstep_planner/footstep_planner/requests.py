@@ -1,0 +1,177 @@
+"""From a footstep request to a planning problem, without ROS.
+
+The node converts messages and calls these: the planner's options from the robot
+profile's walking limits, the door from the detector's estimate, the stance the feet
+start from, and the goal poses and obstacles of a "stand" or "through" request.
+All poses are in ``odom`` (m, rad).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
+from enum import Enum
+from typing import Any
+
+import numpy as np
+
+from door_contract.payloads import DoorEstimate
+from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide, wall_obstacles
+from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from footstep_planner.goals import pull_passage_waypoints, stand_pose_for_opening
+from footstep_planner.legs import Leg
+from footstep_planner.narrow import passage_legs
+from footstep_planner.options import FootstepPlannerOptions
+from footstep_planner.robot_limits import options_for_walking, planner_options
+from footstep_planner.world import World
+
+__all__ = ["GoalSettings", "WalkGoal", "WalkProblem", "door_geometry_from_estimate", "options_for_problem",
+           "options_for_walking", "passage_angle", "planner_options", "stand_pose", "start_stance", "walk_problem"]
+
+PLANNED_STANCE_TOLERANCE = (0.03, 0.05)
+"""The base within (m, rad) of where the last plan left it: that plan was walked."""
+PULL_LEG_NAMES = ("turn towards the hinge", "along the wall", "face the doorway", "through the doorway")
+"""The legs of :func:`~footstep_planner.goals.pull_passage_waypoints`, in order."""
+
+
+class WalkGoal(str, Enum):
+    """What a FootstepRequest asks for."""
+
+    STAND = "stand"
+    """To the stand pose, where the arms open the door."""
+    THROUGH = "through"
+    """Through the open doorway."""
+
+
+def door_geometry_from_estimate(estimate: DoorEstimate, opening: DoorOpening, angle: float,
+                                handle_standoff: float) -> DoorGeometry:
+    """The planner's door from a detector estimate (odom): the handle's face point fixes the
+    door along the wall; the measured edges (``corners``: bottom-hinge, bottom-free, …) give
+    the opening between the jambs and the handle's distance from the free edge. Without
+    edges (operator-aided estimates) the DRC door's dimensions are assumed."""
+    normal = np.asarray(estimate.normal[:2]) / np.linalg.norm(estimate.normal[:2])
+    face = np.asarray(estimate.handle_position[:2]) - handle_standoff * normal
+    dimensions = {}
+    corners = np.asarray(estimate.corners, dtype=float)
+    if corners.shape == (4, 3) and np.isfinite(corners).all():
+        hinge, free = corners[0, :2], corners[1, :2]
+        width = float(np.linalg.norm(free - hinge))
+        handle_offset = width - float((face - hinge) @ (free - hinge)) / max(width, 1e-9)
+        if 0.5 <= width <= 1.5 and 0.0 < handle_offset < width:
+            dimensions = {"leaf_width": width, "clear_opening": width, "handle_offset": handle_offset}
+    return DoorGeometry.from_handle(float(face[0]), float(face[1]), math.atan2(normal[1], normal[0]),
+                                    HingeSide(estimate.hinge_side.value), opening, angle=angle, **dimensions)
+
+
+def start_stance(body: Pose2D, separation: float, feet: tuple[Pose2D, Pose2D] | None = None,
+                 planned: Stance | None = None) -> Stance:
+    """The feet to plan from: measured (``feet`` = left, right soles) when the robot reports
+    them; else where the last plan left them (``planned``) if the base stands at that
+    stance's midpoint (the plan was walked); else the nominal stance around the base."""
+    if feet is not None:
+        left, right = feet
+        return Stance(Footstep(left.x, left.y, left.yaw, Foot.LEFT),
+                      Footstep(right.x, right.y, right.yaw, Foot.RIGHT))
+    if planned is not None:
+        middle = planned.body_pose
+        near, turned = PLANNED_STANCE_TOLERANCE
+        if middle.distance_to(body) < near and middle.yaw_difference(body) < turned:
+            return planned
+    return Stance.nominal(body, separation)
+
+
+@dataclass(frozen=True)
+class GoalSettings:
+    """Where the robot stands to open a door and where a passage ends (the node's
+    parameters of the same names; ranges in :mod:`footstep_planner.parameters`)."""
+
+    stand_reach: float = 0.50
+    """Base to the door plane when opening a push door (m)."""
+    stand_reach_pull: float = 0.65
+    """Base to the door plane when opening a pull door (m)."""
+    stand_handle_offset: float = 0.20
+    """Base to the handle along the wall, towards the hinge (m)."""
+    pull_sweep_half_depth: float = 0.15
+    """How far the torso reaches ahead of the base at a pull door (m)."""
+    pull_sweep_angle: float = 0.45
+    """How far a pull door swings while pulled (rad)."""
+    pull_stand_beyond_latch: float = 0.05
+    """Base past a pull door's latch edge along the wall (m)."""
+    handle_standoff: float = 0.06
+    """Door face behind the handle grasp point (m)."""
+    beyond_door: float = 1.0
+    """Goal distance past the door plane (m)."""
+    passage_door_angle: float = 1.57
+    """Push-door angle assumed while passing: the body pushes the leaf open (rad)."""
+
+    @classmethod
+    def from_parameters(cls, parameters: Mapping[str, Any]) -> GoalSettings:
+        """The settings among a node's parameters (others are ignored)."""
+        names = {field for field in cls.__dataclass_fields__}
+        return cls(**{name: float(value) for name, value in parameters.items() if name in names})
+
+
+@dataclass(frozen=True)
+class WalkProblem:
+    """One request's planning problem: the poses to walk through in order, among obstacles."""
+
+    start: Stance
+    legs: tuple[Leg, ...]
+    world: World
+    door: DoorGeometry
+    """The door as planned around (for a push passage: at the passage angle)."""
+
+
+def stand_pose(door: DoorGeometry, options: FootstepPlannerOptions, settings: GoalSettings) -> Pose2D:
+    """Where the robot stands to open ``door`` (:func:`~footstep_planner.goals.stand_pose_for_opening`)."""
+    pull = door.opening is DoorOpening.PULL
+    return stand_pose_for_opening(door, options, reach=settings.stand_reach_pull if pull else settings.stand_reach,
+                                  handle_offset=settings.stand_handle_offset,
+                                  sweep_half_depth=settings.pull_sweep_half_depth,
+                                  pull_sweep_angle=settings.pull_sweep_angle,
+                                  beyond_latch=settings.pull_stand_beyond_latch)
+
+
+def passage_angle(door_angle: float, settings: GoalSettings) -> float:
+    """The push door's angle planned around while passing: at least ``passage_door_angle``
+    (the body pushes the leaf open), more when the door is already open further."""
+    return max(door_angle, settings.passage_door_angle)
+
+
+def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: FootstepPlannerOptions,
+                 settings: GoalSettings) -> WalkProblem:
+    """The poses and obstacles of a request.
+
+    * stand: the door is shut while the robot walks there, so its leaf is an obstacle;
+      the stand pose itself keeps the torso out of a pulled leaf's swing;
+    * through a PULL door: the other hand blocks the leaf and the walk sweeps it open
+      (:func:`~footstep_planner.goals.pull_passage_waypoints`): only wall and posts count;
+    * through a PUSH door: the leaf at :func:`passage_angle` is an obstacle.
+
+    A doorway narrower than the body is passed sideways
+    (:func:`~footstep_planner.narrow.passage_legs`).
+    """
+    if goal is WalkGoal.STAND:
+        legs = (Leg(stand_pose(door, options, settings), "to the stand pose"),)
+        return WalkProblem(start, legs, World.from_door(door), door)
+    if door.opening is DoorOpening.PULL:
+        poses = pull_passage_waypoints(door, stand_pose(door, options, settings), settings.beyond_door)
+        legs = tuple(Leg(pose, name) for pose, name in zip(poses, PULL_LEG_NAMES))
+        sideways = passage_legs(door, options, settings.beyond_door, heading=poses[1].yaw)
+        if len(sideways) > 1:  # narrower than the body: sideways, not facing the doorway
+            legs = (*legs[:2], *sideways)
+        return WalkProblem(start, legs, World(wall_obstacles(door)), door)
+    door = door.with_angle(passage_angle(door.angle, settings))
+    return WalkProblem(start, passage_legs(door, options, settings.beyond_door), World.from_door(door), door)
+
+
+def options_for_problem(problem: WalkProblem, goal: WalkGoal,
+                        options: FootstepPlannerOptions) -> FootstepPlannerOptions:
+    """The stand pose is where the arm must reach the handle: the walk ends exactly on it
+    (snap_to_goal; 4 cm and 3.8° off, within the search's goal tolerance, made a turn
+    unreachable). So do the legs of a walk through waypoints (the pull door's turns
+    sweep the door open). A plain passage keeps the search's tolerance."""
+    if goal is WalkGoal.STAND or len(problem.legs) > 1:
+        return replace(options, snap_to_goal=True)
+    return options

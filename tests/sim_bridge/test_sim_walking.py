@@ -1,0 +1,168 @@
+"""The physical robot: stands, walks its footstep plans, stops at a stance, falls when shoved.
+
+Floating-base TALOS on the floor under position control with the URDF efforts; the walking
+controller of door_sim_bridge.walking keeps it up. Figures from issue #11: standing 10 s
+drifts < 1 cm; 10 × 0.2 m ends within 3 cm of the plan; a 30° turn within 3°; a 200 N shove
+at the torso is a fall, reported as FELL, and nothing executes afterwards.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from door_contract.converters.footsteps import Foot, FootPlacement
+from door_contract.payloads import OutcomeStatus
+from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
+from door_sim_bridge.world import DoorWorld, EventKind, StanceConfig, WorldConfig
+
+FAR_FROM_THE_DOOR = StanceConfig(distance=3.5)
+
+
+@pytest.fixture
+def world():
+    with DoorWorld(WorldConfig(stance=FAR_FROM_THE_DOOR)) as sim:
+        yield sim
+
+
+def straight_plan(world: DoorWorld, stride: float, steps: int) -> list[FootPlacement]:
+    """``steps`` strides of ``stride`` m, then the trailing foot brought alongside."""
+    feet = world.foot_placements()
+    plan = []
+    for index in range(steps + 1):
+        foot = Foot.LEFT if index % 2 == 0 else Foot.RIGHT
+        advance = stride * min(index + 1, steps)
+        plan.append(FootPlacement(foot, feet[foot].x + advance, feet[foot].y, 0.0))
+    return plan
+
+
+def turn_plan(world: DoorWorld, turn: float, pairs: int) -> list[FootPlacement]:
+    """Turn in place about the stance centre by ``turn`` rad per pair of steps."""
+    feet = world.foot_placements()
+    cx, cy = (feet[Foot.LEFT].x + feet[Foot.RIGHT].x) / 2.0, (feet[Foot.LEFT].y + feet[Foot.RIGHT].y) / 2.0
+    half = math.hypot(feet[Foot.LEFT].x - feet[Foot.RIGHT].x, feet[Foot.LEFT].y - feet[Foot.RIGHT].y) / 2.0
+    plan, yaw = [], feet[Foot.LEFT].yaw
+    for index in range(2 * pairs):
+        foot = Foot.LEFT if index % 2 == 0 else Foot.RIGHT
+        if foot is Foot.LEFT:
+            yaw += turn
+        side = 1.0 if foot is Foot.LEFT else -1.0
+        plan.append(FootPlacement(foot, cx - side * half * math.sin(yaw), cy + side * half * math.cos(yaw), yaw))
+    return plan
+
+
+def sole_error(world: DoorWorld, plan: list[FootPlacement]) -> tuple[float, float]:
+    """Largest position (m) and heading (rad) error of the soles against the plan's last two."""
+    feet = world.foot_placements()
+    last = {step.foot: step for step in plan[-2:]}
+    distance = max(math.hypot(feet[f].x - s.x, feet[f].y - s.y) for f, s in last.items())
+    heading = max(abs(math.remainder(feet[f].yaw - s.yaw, math.tau)) for f, s in last.items())
+    return distance, heading
+
+
+def test_stands_for_10_seconds_with_less_than_1_cm_of_drift(world):
+    start = world.base_pose()
+    world.step(int(10.0 * world.config.physics_rate))
+    assert not world.fallen
+    assert np.linalg.norm(world.base_pose()[:2, 3] - start[:2, 3]) < 0.01
+    assert abs(world.base_pose()[2, 3] - start[2, 3]) < 0.01
+
+
+def test_walks_ten_strides_of_20_cm_within_3_cm_of_the_plan(world):
+    plan = straight_plan(world, 0.2, 10)
+    result = FootstepExecution(world, plan).run()
+    assert result.status is OutcomeStatus.SUCCESS, result.reason
+    distance, _ = sole_error(world, plan)
+    assert distance < 0.03
+    assert world.base_pose()[0, 3] > -FAR_FROM_THE_DOOR.distance + 1.8  # it really walked 2 m
+
+
+def test_turns_30_degrees_in_place_within_3_degrees(world):
+    plan = turn_plan(world, math.radians(10.0), 3)
+    result = FootstepExecution(world, plan).run()
+    assert result.status is OutcomeStatus.SUCCESS, result.reason
+    distance, heading = sole_error(world, plan)
+    assert heading < math.radians(3.0) and distance < 0.03
+    yaw = math.atan2(world.base_pose()[1, 0], world.base_pose()[0, 0])
+    assert yaw == pytest.approx(math.radians(30.0), abs=math.radians(3.0))
+
+
+def test_walks_with_an_arm_held_out(world):
+    """The pull passage walks with the blocking hand where BLOCK left it."""
+    held = {"arm_left_1_joint": -0.6, "arm_left_2_joint": 0.4, "arm_left_4_joint": -1.2}
+    assert TrajectoryExecution(world, [2.0], list(held), [list(held.values())]).run().status is OutcomeStatus.SUCCESS
+    plan = straight_plan(world, 0.2, 4)
+    result = FootstepExecution(world, plan).run()
+    assert result.status is OutcomeStatus.SUCCESS, result.reason
+    positions = world.joint_positions()
+    assert all(positions[name] == pytest.approx(value, abs=0.05) for name, value in held.items())
+    assert sole_error(world, plan)[0] < 0.03
+
+
+def test_a_stop_ends_the_walk_at_the_next_stable_stance(world):
+    plan = straight_plan(world, 0.2, 10)
+    execution = FootstepExecution(world, plan)
+    execution.advance(int(2.5 * world.config.physics_rate))  # into the walk
+    assert world.walking
+    result = execution.cancel("operator stop")
+    assert result.status is OutcomeStatus.FAILURE and result.reason == "operator stop"
+    for _ in range(int((3.0 + world.config.gait.settle_s) * world.config.physics_rate)):
+        if not world.walking:  # stepped and settled (the CoM over the feet)
+            break
+        world.step()
+    assert not world.walking and not world.fallen
+    before = world.base_pose()
+    world.step(int(1.0 * world.config.physics_rate))  # standing still now
+    assert np.linalg.norm(world.base_pose()[:2, 3] - before[:2, 3]) < 0.01
+    assert world.base_pose()[0, 3] < plan[-1].x - 0.8  # it did not walk the whole plan
+
+
+def test_a_stop_before_the_first_step_stands_where_it_is(world):
+    plan = straight_plan(world, 0.2, 6)
+    feet = world.foot_placements()
+    execution = FootstepExecution(world, plan)
+    execution.advance(int(0.3 * world.config.physics_rate))  # in the first double support
+    execution.stop("operator pause")
+    result = execution.run(max_steps=int(3.0 * world.config.physics_rate))
+    assert result.status is OutcomeStatus.STOPPED and "after step 0 of" in result.reason
+    after = world.foot_placements()
+    assert all(math.hypot(after[f].x - feet[f].x, after[f].y - feet[f].y) < 0.01 for f in feet)
+
+
+def test_a_200_N_shove_at_the_torso_is_a_fall_reported_as_fell(world):
+    plan = straight_plan(world, 0.2, 6)
+    execution = FootstepExecution(world, plan)
+    execution.advance(int(1.0 * world.config.physics_rate))
+    world.push_robot("torso_2_link", [0.0, 200.0, 0.0], steps=int(0.5 * world.config.physics_rate))
+    result = execution.run(max_steps=int(5.0 * world.config.physics_rate))
+    assert result.status is OutcomeStatus.FELL and "fell" in result.reason
+    assert world.fallen and [e.kind for e in world.events()].count(EventKind.FELL) == 1
+    world.step(int(2.0 * world.config.physics_rate))
+    assert world.fallen  # a fallen robot stays fallen
+    again = TrajectoryExecution(world, [1.0], ["arm_left_1_joint"], [[0.1]]).run()
+    assert again.status is OutcomeStatus.FELL
+    assert FootstepExecution(world, straight_plan(world, 0.1, 2)).run().status is OutcomeStatus.FELL
+
+
+@pytest.mark.parametrize("names, reason", [
+    (["leg_left_4_joint"], "leg joint"),
+    (["arm_left_1_joint"], "outside its limits"),
+])
+def test_bad_trajectories_are_rejected_and_nothing_moves(world, names, reason):
+    before = world.joint_positions()
+    value = 10.0 if reason == "outside its limits" else before[names[0]] + 0.1
+    result = TrajectoryExecution(world, [1.0], names, [[value]]).run()
+    assert result.status is OutcomeStatus.REJECTED and reason in result.reason
+    after = world.joint_positions()
+    assert all(after[name] == pytest.approx(before[name], abs=1e-3) for name in world.commandable_joints())
+
+
+def test_a_footstep_plan_beyond_the_limits_is_rejected_and_the_robot_stands(world):
+    start = world.base_pose()
+    plan = straight_plan(world, world.profile.walking.max_stride + 0.1, 2)
+    result = FootstepExecution(world, plan).run()
+    assert result.status is OutcomeStatus.REJECTED and "max_stride" in result.reason
+    world.step(int(0.5 * world.config.physics_rate))
+    assert np.linalg.norm(world.base_pose()[:2, 3] - start[:2, 3]) < 0.005 and not world.walking
