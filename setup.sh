@@ -2,8 +2,9 @@
 # One command from a fresh Debian 12 / Python 3.11 machine to a running door task:
 #   1. Debian libraries open3d needs (installed only if missing),
 #   2. a venv in .venv with the pinned requirements (skipped when requirements.txt is unchanged),
-#   3. `colcon build` of the ROS 2 workspace in ros_ws/ (ament_python packages),
-#   4. the main job (skip with --no-run).
+#   3. tf2_msgs built into the venv, only where `import tf2_msgs` fails (ROS 2 from PyPI has none),
+#   4. `colcon build` of the ROS 2 workspace in ros_ws/ (ament_python packages),
+#   5. the main job (skip with --no-run).
 # Idempotent: a second run takes a few seconds.
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -39,10 +40,23 @@ stamp=.venv/.requirements.sha256
 wanted=$(sha256sum requirements.txt | cut -d' ' -f1)
 if [ "$(cat "$stamp" 2>/dev/null)" != "$wanted" ]; then
   .venv/bin/python -m pip install -q --disable-pip-version-check -r requirements.txt 2>&1 | grep -v "^WARNING: Location" || true
-  .venv/bin/python -c "import rclpy, pinocchio, pybullet, open3d, cv2, osqp, rosbags" 
+  .venv/bin/python -c "import rclpy, pinocchio, pybullet, open3d, cv2, osqp, rosbags, foxglove"
   echo "$wanted" > "$stamp"
 else
   echo "up to date"
+fi
+
+step "tf2_msgs for /tf (built only where it is not importable)"
+tf2_stamp=.venv/.tf2_msgs.sha256
+tf2_wanted=$(cat requirements.txt interfaces/requirements-build.txt interfaces/build_tf2_msgs.sh \
+               interfaces/tf2_msgs/CMakeLists.txt interfaces/tf2_msgs/package.xml interfaces/tf2_msgs/msg/*.msg | sha256sum | cut -d' ' -f1)
+if .venv/bin/python -c "import tf2_msgs.msg" 2>/dev/null && { [ ! -f "$tf2_stamp" ] || [ "$(cat "$tf2_stamp")" = "$tf2_wanted" ]; }; then
+  echo "present"   # the system's (real ROS install), or ours from an earlier run
+else
+  tf2_started=$SECONDS
+  interfaces/build_tf2_msgs.sh
+  echo "$tf2_wanted" > "$tf2_stamp"
+  echo "tf2_msgs built in $((SECONDS - tf2_started)) s"
 fi
 
 step "Source packages importable from the venv (like pip install -e)"

@@ -48,7 +48,29 @@ REQUESTS = QosSpec(depth=1000)
 SENSOR = QosSpec(depth=5)
 #: Latest-value topics a late joiner must still receive (state, approval request).
 LATCHED = QosSpec(depth=1, durability=Durability.TRANSIENT_LOCAL)
+#: /tf: as tf2_ros broadcasts it, reliable with a deep queue (many frames per message).
+TF_STREAM = QosSpec(depth=100)
 #: /clock: many small messages, only the newest matters.
 CLOCK = QosSpec(depth=1, reliability=Reliability.BEST_EFFORT)
 #: Service requests and responses: every call answered, a burst of hundreds queued.
 SERVICE = QosSpec(depth=1000)
+
+
+SUBSCRIPTION_DEPTH = 100
+
+
+def matching_subscription(offered, fallback):  # (Sequence[rclpy QoSProfile], QoSProfile) -> QoSProfile
+    """A subscription that receives from every publisher offering ``offered`` (what rosbag2's
+    recorder and Foxglove's bridge subscribe with): best effort if any publisher is best
+    effort, transient local only if every publisher is (then a latched message published
+    before the subscriber joined still arrives), a deep queue. ``fallback`` when nobody offers.
+    """
+    from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
+
+    if not offered:
+        return fallback
+    best_effort = any(p.reliability == ReliabilityPolicy.BEST_EFFORT for p in offered)
+    latched = all(p.durability == DurabilityPolicy.TRANSIENT_LOCAL for p in offered)
+    return QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=max(SUBSCRIPTION_DEPTH, fallback.depth),
+                      reliability=ReliabilityPolicy.BEST_EFFORT if best_effort else ReliabilityPolicy.RELIABLE,
+                      durability=DurabilityPolicy.TRANSIENT_LOCAL if latched else DurabilityPolicy.VOLATILE)

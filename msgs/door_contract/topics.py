@@ -12,7 +12,7 @@ import importlib
 from dataclasses import dataclass
 
 from door_contract.frames import Frame
-from door_contract.qos import CLOCK, EVENTS, LATCHED, REQUESTS, SENSOR, SERVICE, QosSpec
+from door_contract.qos import CLOCK, EVENTS, LATCHED, REQUESTS, SENSOR, SERVICE, TF_STREAM, QosSpec
 
 
 @dataclass(frozen=True)
@@ -75,11 +75,20 @@ class Topics:
     DEPTH_INFO = TopicSpec("/head_camera/depth/camera_info", "sensor_msgs/msg/CameraInfo", SENSOR,
                            "sim_bridge", "depth intrinsics", frame=Frame.HEAD_CAMERA_OPTICAL.value)
     FOOT_POSES = TopicSpec("/feet", "nav_msgs/msg/Path", SENSOR, "sim_bridge",
-                           "where the soles stand: poses[0] left, poses[1] right (tf2 is not on PyPI)",
+                           "where the soles stand: poses[0] left, poses[1] right (also on /tf)",
                            frame=Frame.ODOM.value, unit="m")
     CAMERA_POSE = TopicSpec("/head_camera/pose", "geometry_msgs/msg/PoseStamped", SENSOR, "sim_bridge",
-                            "head camera optical frame in odom, stamped like its images (tf2 is not "
-                            "on PyPI)", frame=Frame.ODOM.value, unit="m")
+                            "head camera optical frame in odom, stamped like its images (also on /tf)",
+                            frame=Frame.ODOM.value, unit="m")
+    TF = TopicSpec("/tf", "tf2_msgs/msg/TFMessage", TF_STREAM, "sim_bridge",
+                   "odom → base_link and every moving joint of the robot, stamped with sim time",
+                   frame=Frame.ODOM.value, unit="m")
+    TF_STATIC = TopicSpec("/tf_static", "tf2_msgs/msg/TFMessage", LATCHED, "sim_bridge",
+                          "the URDF's fixed joints and the head camera's optical frame (transient local)",
+                          unit="m")
+    ROBOT_DESCRIPTION = TopicSpec("/robot_description", "std_msgs/msg/String", LATCHED, "sim_bridge",
+                                  "URDF the sim loaded, meshes as package:// (or file://) URIs "
+                                  "(transient local)")
     DOOR_JOINT_STATES = TopicSpec("/sim/door_joint_states", "sensor_msgs/msg/JointState", SENSOR,
                                   "sim_bridge", "ground-truth hinge and handle angles "
                                   "(evaluation only)", unit="rad")
@@ -133,6 +142,10 @@ class Topics:
                                 unit="rad, s")
     MOTION_OUTCOME = TopicSpec("/trajectory_optimizer/outcome", "std_msgs/msg/String", REQUESTS,
                                "trajectory_optimizer", "JSON PlanningOutcome for a request id")
+    PROPOSAL_MARKERS = TopicSpec("/door_task/proposal_markers", "visualization_msgs/msg/MarkerArray",
+                                 LATCHED, "proposal_markers", "what the FSM is offered: footsteps, the "
+                                 "hand's path of each trajectory, the door and its swing (transient local)",
+                                 frame=Frame.ODOM.value)
     TASK_STATE = TopicSpec("/door_task/state", "std_msgs/msg/String", LATCHED, "fsm_supervisor",
                            "current FSM state")
     APPROVAL_REQUEST = TopicSpec("/door_task/approval_request", "std_msgs/msg/String", LATCHED,

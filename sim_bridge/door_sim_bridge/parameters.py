@@ -12,6 +12,9 @@ BRIDGE_PARAMETERS = (
     ParameterSpec("real_time", False, "pace the simulation to the wall clock (false: as fast as possible)"),
     ParameterSpec("state_rate", 50.0, "/joint_states, /odom and /sim/door_joint_states rate (sim time)",
                   unit="Hz", minimum=1.0, maximum=500.0),
+    ParameterSpec("tf_rate", 20.0, "/tf rate (sim time); 0: no /tf", unit="Hz", minimum=0.0, maximum=500.0),
+    ParameterSpec("mesh_uris", "package", "how /robot_description names meshes: package:// (Foxglove via "
+                  "the bridge, RViz via the ament index) or file:// (this machine)", choices=("package", "file")),
     ParameterSpec("clock_rate", 100.0, "/clock rate (sim time)", unit="Hz", minimum=1.0, maximum=1000.0),
     ParameterSpec("camera_rate", 2.0, "head camera frame rate (sim time); 0 disables the camera", unit="Hz",
                   minimum=0.0, maximum=30.0),
@@ -39,4 +42,11 @@ BRIDGE_PARAMETERS = (
     ParameterSpec("supervisor_node", "fsm_supervisor", "node whose heartbeat the dead-man watches"),
     ParameterSpec("stance_yaw", 0.0, "robot yaw relative to facing the door", unit="rad",
                   minimum=-1.0, maximum=1.0),
+    ParameterSpec("door_colour", (0.55, 0.33, 0.17), "door leaf colour, RGB in [0, 1]"),
+    ParameterSpec("frame_colour", (0.92, 0.92, 0.88), "door frame (jambs, header) colour, RGB in [0, 1]"),
+    ParameterSpec("handle_colour", (0.85, 0.70, 0.15), "lever handle colour, RGB in [0, 1]"),
+    ParameterSpec("wall_colour", (0.45, 0.58, 0.72), "wall colour, RGB in [0, 1]"),
+    ParameterSpec("floor_colour", (0.30, 0.30, 0.30), "floor colour, RGB in [0, 1]"),
+    ParameterSpec("light_direction", (-50.0, 30.0, 100.0), "towards the directional light, odom axes "
+                  "(any non-zero length; default: the renderer's own)"),
 )

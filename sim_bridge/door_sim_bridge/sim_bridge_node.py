@@ -37,12 +37,14 @@ from door_contract.node_support import (Heartbeat, as_parameter_error, create_co
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, encode
 from door_contract.stamps import stamp_ns, to_time_msg
 from door_contract.topics import Services, Topics
+from door_robot.meshes import MeshUris
 from door_robot.profile import Side
 from door_robot.errors import RobotModelError
 from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS, NODE_NAME
+from door_sim_bridge.robot_state_publication import RobotStatePublication
 from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, DoorWorld, HingeSide, StanceConfig,
                                    WindConfig, WorldConfig)
 from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT
@@ -50,18 +52,25 @@ from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT
 STEPS_PER_TICK = 4
 
 
+COLOUR_PARAMETERS = ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour")
+"""Node parameters that are DoorConfig colour fields of the same name."""
+
+
 def world_config(p: dict) -> WorldConfig:
     """The world of the node's parameters (SimulationError names a bad field)."""
     camera_rate = p["camera_rate"] if p["camera_rate"] > 0 else 1.0
+    colours = {name: tuple(p[name]) for name in COLOUR_PARAMETERS}
     return WorldConfig(
         robot_profile=p["robot_profile"], physics_rate=p["physics_rate"], seed=p["seed"],
         grasp_break_force=p["grasp_break_force"],
         door=DoorConfig(opening=DoorOpening(p["door_opening"]), hinge_side=HingeSide(p["hinge_side"]),
                         width=p["door_width"], handle_height=p["handle_height"],
-                        closer_stiffness=p["closer_stiffness"], wind=WindConfig(amplitude=p["wind_amplitude"])),
+                        closer_stiffness=p["closer_stiffness"], wind=WindConfig(amplitude=p["wind_amplitude"]),
+                        **colours),
         stance=StanceConfig(distance=p["stance_distance"], lateral_offset=p["stance_lateral"], yaw=p["stance_yaw"]),
         camera=CameraConfig(width=p["camera_width"], height=p["camera_height"], frame_rate_hz=camera_rate,
-                            depth_noise_coefficient=p["depth_noise"], colour_noise_sigma=p["colour_noise"]))
+                            depth_noise_coefficient=p["depth_noise"], colour_noise_sigma=p["colour_noise"],
+                            light_direction=tuple(p["light_direction"])))
 
 
 class Schedule:
@@ -87,12 +96,13 @@ class SimBridgeNode(Node):
             self.world = DoorWorld(world_config(p))
         self.deadman = DeadMan(p["supervisor_timeout"], p["supervisor_node"])
         self.schedules = {"clock": Schedule(p["clock_rate"]), "state": Schedule(p["state_rate"]),
-                          "camera": Schedule(p["camera_rate"])}
+                          "camera": Schedule(p["camera_rate"]), "tf": Schedule(p["tf_rate"])}
         self.execution: tuple[TrajectoryExecution | FootstepExecution, ExecutionKind, int] | None = None
         self.previous_base: tuple[float, np.ndarray] | None = None
         self.wall_start = time.monotonic()
         self.heartbeat = Heartbeat(self)
         self._make_interfaces()
+        self.robot_state = RobotStatePublication(self, self.world, MeshUris(p["mesh_uris"]), self.world.time)
         self.create_timer(0.0 if not p["real_time"] else 1.0 / p["physics_rate"] * STEPS_PER_TICK, self._tick)
         self.get_logger().info(f"ready: {p['robot_profile']}, {p['door_opening']} door hinged {p['hinge_side']}, "
                                f"{p['physics_rate']:.0f} Hz physics, {'real time' if p['real_time'] else 'as fast as possible'}")
@@ -198,6 +208,8 @@ class SimBridgeNode(Node):
             self.publishers_by_name["CLOCK"].publish(Clock(clock=to_time_msg(now)))
         if self.schedules["state"].due(now):
             self._publish_state(now)
+        if self.parameters["tf_rate"] > 0 and self.schedules["tf"].due(now):
+            self.robot_state.publish(now)
         if self.parameters["camera_rate"] > 0 and self.schedules["camera"].due(now):
             self._publish_camera()
 

@@ -50,12 +50,16 @@ def _bad_bags(shared_data, tmp_path):
     (no_keys / "metadata.yaml").write_text("rosbag2_bagfile_information:\n  version: 9\n")
     lost_file = _copy(shared_data, "rosbag2_talker_sqlite3", tmp_path / "lost")
     next(lost_file.glob("*.db3")).unlink()
+    bad_qos = _copy(shared_data, "rosbag2_talker_sqlite3", tmp_path / "qos")
+    metadata = bad_qos / "metadata.yaml"
+    metadata.write_text(metadata.read_text().replace('offered_qos_profiles: "', 'offered_qos_profiles: "not: [yaml', 1))
     return [("truncated db3", truncated_sqlite, BagExit.CORRUPT_STORAGE, "sqlite3"),
             ("truncated mcap", truncated_mcap, BagExit.CORRUPT_STORAGE, "mcap"),
             ("corrupt mcap records", mcap, BagExit.CORRUPT_STORAGE, "mcap"),
             ("metadata not YAML", not_yaml, BagExit.BAD_METADATA, "not YAML"),
             ("metadata missing keys", no_keys, BagExit.BAD_METADATA, "relative_file_paths"),
             ("storage file missing", lost_file, BagExit.BAD_METADATA, "missing"),
+            ("offered QoS not YAML", bad_qos, BagExit.BAD_METADATA, "topics_with_message_count"),
             ("no bag at the path", tmp_path / "nowhere", BagExit.NOT_FOUND, "neither"),
             ("a plain file", sqlite / "metadata.yaml", BagExit.BAD_METADATA, "unknown storage")]
 
@@ -79,6 +83,13 @@ def test_the_installed_player_prints_no_traceback(workspace, tmp_path):
                             env=workspace.environment(), capture_output=True, text=True, timeout=60)
     assert result.returncode == BagExit.NOT_FOUND
     assert "Traceback" not in result.stderr and len(result.stderr.strip().splitlines()) == 1
+
+
+def test_zstd_without_mcap_is_a_usage_error(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exit_:
+        recorder.main([str(tmp_path / "bag"), "--compression", "zstd"])
+    assert exit_.value.code == BagExit.USAGE and "--storage mcap" in capsys.readouterr().err
+    assert not (tmp_path / "bag").exists()
 
 
 def test_recording_over_an_existing_bag_is_refused(tmp_path, capsys):

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from door_bringup.graph_spec import GRAPH
+from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH
 from door_bringup.params_files import SPECS_BY_NODE
 from door_contract.errors import ParameterRangeError
 from door_contract.parameters import ParameterSpec, defaults, read_params_file, validate_all
@@ -12,7 +12,7 @@ RATE = ParameterSpec("rate", 10.0, "a rate", unit="Hz", minimum=1.0, maximum=100
 
 
 def test_every_node_has_a_params_file_equal_to_its_specs(workspace):
-    assert set(SPECS_BY_NODE) == {launch.node_name for launch in GRAPH}
+    assert set(SPECS_BY_NODE) == {launch.node_name for launch in (*GRAPH, FOXGLOVE_BRIDGE)}
     for node_name, specs in SPECS_BY_NODE.items():
         in_file = read_params_file(workspace.params_file(node_name), node_name)
         assert validate_all(specs, in_file) == defaults(specs), node_name

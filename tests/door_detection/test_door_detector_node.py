@@ -99,7 +99,7 @@ def test_bad_frames_give_no_estimate_and_the_node_lives_on(camera, rendered):
 def test_rendered_frames_give_a_voted_estimate_in_odom(camera, rendered, detector):
     frame, handle = rendered
     depth = np.where(np.isfinite(frame.depth), frame.depth, np.nan).astype(np.float32)
-    for index in range(10):  # the vote needs a majority of N = 10 frames; one frame at a time,
+    for index in range(10):  # the window is N = 10 frames; one frame at a time,
         seen = camera.frames[-1] if camera.frames else 0  # as a camera would send them
         camera.publish(200.0 + index * 0.5, np.ascontiguousarray(frame.rgb), depth, frame.intrinsics,
                        frame.camera_pose)
@@ -108,6 +108,7 @@ def test_rendered_frames_give_a_voted_estimate_in_odom(camera, rendered, detecto
         assert spin_until(camera.executor, lambda: camera.frames and camera.frames[-1] > seen, 30.0)
     assert spin_until(camera.executor, lambda: any(e.stamp >= 200.0 for e in camera.estimates), 60.0)
     estimate = next(e for e in camera.estimates if e.stamp >= 200.0)
+    assert estimate.stamp == pytest.approx(200.5) and estimate.frames_voted == 2   # sequential: 2 agree
     assert estimate.frame_id == "odom"
     assert np.linalg.norm(np.subtract(estimate.handle_position, handle[:3, 3])) < 0.02
     assert np.dot(estimate.normal, handle[:3, 0]) > np.cos(np.radians(2.0))

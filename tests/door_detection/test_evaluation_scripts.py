@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
 import pytest
 
 from door_detection import benchmark, evaluate_photos, evaluate_sim
@@ -57,3 +58,47 @@ def test_progress_bar_writes_to_its_stream() -> None:
     bar.advance("two")
     bar.close()
     assert "2/2" in stream.getvalue() and stream.getvalue().endswith("\n")
+
+
+def test_table_two_with_the_head_search_on_one_cell() -> None:
+    from door_detection import table_two
+    from door_detection.neck import neck_of
+    from door_robot.kinematics import RobotKinematics
+    from door_robot.profile import load_profile
+
+    grid = table_two.TableTwoGrid(distances=(3.0,), yaws=(0.6,), trials=1, seed=3)
+    results = table_two.run_table(grid, neck_of(RobotKinematics(load_profile("talos"))), progress=False)
+    assert len(results) == 1 and results[0].scenario.yaw == 0.6
+    automatic = results[0].automatic
+    assert automatic.success and automatic.frames >= 2 and automatic.sim_time >= 0.5
+    text = table_two.report(results, grid)
+    assert "TABLE II (ours" in text and "3.0 m |" in text and "Seed 001 Table II" in text
+    assert "target ≥ 98% in every cell: met" in text
+
+
+def test_a_search_without_a_door_is_judged_a_failure() -> None:
+    from door_detection.search_trial import SearchOutcome
+    from door_detection.table_two import judge
+
+    from door_detection.table_two import TrialResult, failed_starts
+    from door_detection.trial_scenes import TrialScene
+
+    result = judge(SearchOutcome(None, 12, 6, 9.0, (0.02,) * 12), np.zeros(3), np.array([-1.0, 0, 0]), 0.9)
+    assert not result.success and result.outcome == "no door confirmed" and math.isnan(result.handle_error)
+    assert (result.frames, result.views) == (12, 6)
+    listed = failed_starts([TrialResult(TrialScene(2.0, 0.4, seed=7), result, result)], "automatic")
+    assert "no door confirmed" in listed and "TrialScene(distance=2.0, yaw=0.4" in listed and "seed=7" in listed
+
+
+def test_table_two_in_two_processes_gives_the_same_trials_in_the_same_order() -> None:
+    from door_detection import table_two
+    from door_detection.neck import neck_of
+    from door_robot.kinematics import RobotKinematics
+    from door_robot.profile import load_profile
+
+    neck = neck_of(RobotKinematics(load_profile("talos")))
+    grid = table_two.TableTwoGrid(distances=(2.0,), yaws=(-0.2,), trials=2, seed=5)
+    alone = table_two.run_table(grid, neck, progress=False)
+    parallel = table_two.run_table(grid, neck, progress=False, jobs=2)
+    assert [r.scenario for r in parallel] == [r.scenario for r in alone] == grid.scenes()
+    assert [r.automatic.handle_error for r in parallel] == [r.automatic.handle_error for r in alone]

@@ -63,3 +63,15 @@ def test_pairs_closer_than_sixty_pixels_are_dropped() -> None:
                                     [400.0, 0.0, 400.0, 400.0], [700.0, 350.0, 700.0, 500.0]]))
     pairs = {tuple(p) for p in pair_lines(lines, DetectionOptions()).tolist()}
     assert pairs == {(0, 2), (1, 2)}         # (0, 1) is 50 px apart; line 3 barely overlaps
+
+
+def test_an_unresolved_bar_leans_on_the_stand_off_prior() -> None:
+    """A bar two or three pixels high: its pixels' median (4 cm, precise) is pulled by the
+    rose; the segmentation error moves the fused stand-off most of the way to the prior."""
+    from door_detection.grasp import fused_standoff
+
+    options = DetectionOptions()
+    measured = np.full(40, 0.040) + np.linspace(-1e-3, 1e-3, 40)
+    assert abs(fused_standoff(measured, options) - 0.040) < 1e-3
+    leaned = fused_standoff(measured, options, segmentation_sigma=0.026)
+    assert 0.055 < leaned < options.handle_standoff_prior

@@ -46,3 +46,25 @@ def test_independent_pybullet_scene(fixture_scene) -> None:
     assert result.ok, result.reason
     assert handle_error(result.estimate.handle_position, fixture_scene.handle_position) < 0.02
     assert angle_deg(result.estimate.normal, fixture_scene.normal) < 2.0
+
+
+def test_a_scribble_grown_onto_the_jamb_keeps_the_lever_only() -> None:
+    """Table II start 457: 4 m away, a steel lever 7 cm from the latch edge of a grey-blue leaf,
+    stereo noise σ = 4 cm (no telling the jamb's face from the leaf by depth). The scribble,
+    grown by 4 px, covers the jamb's side face; only the part touching the drawn scribble is
+    the handle (the jamb's column had moved the grasp point 3.2 cm towards the latch)."""
+    from door_detection.search_trial import operator_scribble
+    from door_detection.trial_scenes import Appearance, TrialScene, world_config
+    from door_sim_bridge.world import DoorWorld
+
+    look = Appearance((0.45, 0.52, 0.6), (0.92, 0.92, 0.88), (0.75, 0.75, 0.78), (0.7, 0.8, 0.65), (0.15, 0.15, 0.15),
+                      (-0.634, 0.307, 0.710))
+    scene = TrialScene(4.0, 0.0, -0.395, 0.954, 1.065, "push", "right", 0.0025, look, 457)
+    with DoorWorld(world_config(scene)) as world:
+        frame, grasp = world.render(), world.handle_grasp_pose()
+        scribble = operator_scribble(world, np.random.default_rng(457))
+    up = frame.camera_pose[:3, :3].T @ np.array([0.0, 0.0, 1.0])
+    result = detect_from_scribble(frame.rgb, frame.depth, frame.intrinsics, scribble, hinge_side=Side.RIGHT, up=up)
+    assert result.ok, result.reason
+    in_odom = result.estimate.transformed(frame.camera_pose)
+    assert handle_error(in_odom.handle_position, grasp[:3, 3]) < 0.01

@@ -15,7 +15,8 @@ def test_defaults_follow_the_paper() -> None:
     assert options.min_pair_separation == 60.0            # Sec. III-A: 60 px
     assert (options.door_width_min, options.door_width_max) == (0.80, 1.00)   # 90 ± 10 cm
     assert options.plane_inlier_distance == 0.05           # 5 cm
-    assert options.vote_frames == 10 and options.vote_majority == 6
+    assert options.vote_frames == 10                       # the window of Sec. III-A
+    assert options.vote_min_agreeing == 2                   # ours: confirms before the window is full
 
 
 @pytest.mark.parametrize("field, value, words", [
@@ -24,6 +25,8 @@ def test_defaults_follow_the_paper() -> None:
     ("vote_frames", 2.5, "vote_frames must be an integer"),
     ("line_scale", True, "line_scale must be a number"),
     ("door_width_min", float("nan"), "door_width_min = nan is outside"),
+    ("vote_min_agreeing", 0, "vote_min_agreeing = 0 is outside [1, 100] frames"),
+    ("vote_handle_confidence", 0.0, "vote_handle_confidence = 0.0 is outside (0, 0.1] m"),
 ])
 def test_bad_option_names_field_and_range(field, value, words) -> None:
     with pytest.raises(DetectionError, match=words.replace("(", r"\(").replace("[", r"\[")):

@@ -94,3 +94,17 @@ def test_bad_trajectory_is_rejected_and_moves_nothing(listener, names, positions
     assert reason in outcome.reason
     after = listener.got["joints"][-1]
     assert abs(after["arm_right_4_joint"] - before["arm_right_4_joint"]) < 1e-3
+
+
+@pytest.mark.parametrize("override, message", [
+    ("handle_colour:=[0.5, 2.0, 0.5]", r"DoorConfig.handle_colour = 2.0 is outside the allowed range \[0, 1\]"),
+    ("light_direction:=[0.0, 0.0, 0.0]", r"CameraConfig.light_direction .* no direction"),
+])
+def test_an_unrenderable_appearance_stops_the_bridge_with_a_message(workspace, override, message):
+    import re
+
+    command = [str(workspace.executable(BRIDGE.package, BRIDGE.executable)), "--ros-args",
+               "--params-file", str(workspace.params_file("sim_bridge")), "-p", override]
+    result = subprocess.run(command, env=workspace.environment(), capture_output=True, text=True, timeout=60)
+    assert result.returncode == 2
+    assert re.search(message, result.stdout + result.stderr), result.stderr

@@ -95,3 +95,22 @@ def test_large_frames_render():
     with DoorWorld(WorldConfig(camera=camera, door=DoorConfig(opening=DoorConfig().opening))) as world:
         frame = world.render()
     assert frame.rgb.shape == (544, 1024, 3) and frame.intrinsics.cy == 271.0
+
+
+def _leaf_level(light_direction: tuple[float, float, float]) -> float:
+    """Median red level of the leaf's centre, straight on from 2 m, under one light."""
+    camera = CameraConfig(width=160, height=120, light_direction=light_direction)
+    with DoorWorld(WorldConfig(stance=StanceConfig(distance=2.0), camera=camera)) as world:
+        rgb = world.render().rgb
+    return float(np.median(rgb[50:70, 70:90, 0]))
+
+
+def test_the_light_direction_shades_the_leaf():
+    """TinyRenderer's shading 0.6 + 0.35·max(n·l, 0) of the leaf's red 0.55: lit head-on from
+    the robot's side (n·l = 1) against lit from behind the wall (n·l < 0), and the default
+    light (n·l = 0.43), which renders as it did before the light was a parameter."""
+    red = 0.55 * 255
+    assert _leaf_level((-1.0, 0.0, 0.0)) == pytest.approx(red * 0.95, abs=2.0)
+    assert _leaf_level((1.0, 0.0, 0.2)) == pytest.approx(red * 0.60, abs=2.0)
+    default = CameraConfig().light_direction
+    assert _leaf_level(default) == pytest.approx(red * (0.6 + 0.35 * 50 / np.linalg.norm(default)), abs=2.0)

@@ -45,11 +45,22 @@ def test_a_bad_value_names_the_field_and_its_range(make, field, allowed):
     assert isinstance(error.value, ValueError)
 
 
-def test_scene_colours_must_be_distinct():
-    with pytest.raises(SimulationError, match="door_colour and DoorConfig.frame_colour"):
-        DoorConfig(door_colour=(0.9, 0.9, 0.9), frame_colour=(0.92, 0.92, 0.9))
-    with pytest.raises(SimulationError, match="handle_colour"):
+def test_any_scene_colours_are_accepted_and_only_unrenderable_ones_refused():
+    """Alike colours render (a white leaf on a white wall, a dark-grey handle over a grey
+    floor: scenes for the detector, not configuration errors); a colour outside RGB [0, 1]
+    and a light without a direction cannot be rendered and are refused, naming the field."""
+    white = DoorConfig(door_colour=(1.0, 1.0, 1.0), wall_colour=(1.0, 1.0, 1.0), frame_colour=(0.92, 0.92, 0.9),
+                       handle_colour=(0.25, 0.25, 0.25), floor_colour=(0.3, 0.3, 0.3))
+    assert white.door_colour == white.wall_colour
+    with pytest.raises(SimulationError, match="DoorConfig.handle_colour"):
         DoorConfig(handle_colour=(1.2, 0.0, 0.0))
+    with pytest.raises(SimulationError, match="DoorConfig.floor_colour"):
+        DoorConfig(floor_colour=(0.3, 0.3))
+    with pytest.raises(SimulationError, match="CameraConfig.light_direction .* no direction"):
+        CameraConfig(light_direction=(0.0, 0.0, 0.0))
+    with pytest.raises(SimulationError, match="CameraConfig.light_direction"):
+        CameraConfig(light_direction=(1.0, float("nan"), 0.0))
+    assert CameraConfig(light_direction=(0.0, -2.0, 1.0)).light_direction == (0.0, -2.0, 1.0)
 
 
 @pytest.mark.parametrize("opening", list(DoorOpening))
@@ -76,3 +87,20 @@ def test_door_geometry_follows_the_convention(opening, hinge_side):
     face = geometry.face_corners + geometry.hinge_origin
     np.testing.assert_allclose(face[:, 0], 0.0, atol=1e-12)
     assert "door_hinge" in door_urdf(door) and "door_handle" in door_urdf(door)
+
+
+def test_the_bridge_maps_its_appearance_parameters_onto_the_world():
+    from door_contract.parameters import validate_all
+    from door_sim_bridge.parameters import BRIDGE_PARAMETERS
+    from door_sim_bridge.sim_bridge_node import world_config
+
+    white = [1.0, 1.0, 1.0]
+    config = world_config(validate_all(BRIDGE_PARAMETERS, {"door_colour": white, "wall_colour": white,
+                                                           "light_direction": [0.0, -1.0, 1.0]}))
+    assert config.door.door_colour == config.door.wall_colour == (1.0, 1.0, 1.0)
+    assert config.camera.light_direction == (0.0, -1.0, 1.0)
+    defaults = world_config(validate_all(BRIDGE_PARAMETERS, {}))
+    assert defaults.door == DoorConfig(width=0.914, handle_height=0.91)
+    assert defaults.camera.light_direction == CameraConfig().light_direction
+    with pytest.raises(SimulationError, match="DoorConfig.handle_colour"):
+        world_config(validate_all(BRIDGE_PARAMETERS, {"handle_colour": [0.5, 2.0, 0.5]}))

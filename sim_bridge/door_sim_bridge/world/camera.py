@@ -21,6 +21,9 @@ fy = (H / 2) / tan(fov / 2), fx = fy (square pixels). TinyRenderer samples scree
 stores row j as image row v = H - 1 - j; the optical axis (ndc 0, 0) therefore falls on
 cx = W / 2, cy = H / 2 - 1 (verified by back-projecting rendered planes to < 0.1 mm).
 
+Light: a directional light from ``CameraConfig.light_direction`` (odom), TinyRenderer's
+ambient 0.6 and diffuse 0.35 coefficients; the default is the renderer's own z-up light.
+
 Noise (optional): depth += N(0, (k z²)²) — stereo depth error grows with the square of the
 range — and colour += N(0, sigma²) per channel, both from the world's seeded generator.
 """
@@ -109,6 +112,8 @@ class HeadCamera:
         self.intrinsics = intrinsics_of(config)
         self._projection = client.computeProjectionMatrixFOV(
             config.vertical_fov_deg, config.width / config.height, config.near, config.far)
+        light = np.asarray(config.light_direction, dtype=float)
+        self._light = (light / np.linalg.norm(light)).tolist()
         robot.link_index(robot.profile.head_camera_frame)  # fail early on a wrong frame name
 
     def pose(self) -> np.ndarray:
@@ -123,7 +128,7 @@ class HeadCamera:
         width, height = self.config.width, self.config.height
         _, _, rgba, zbuffer, _ = self._client.getCameraImage(
             width, height, view, self._projection, renderer=pybullet.ER_TINY_RENDERER,
-            flags=pybullet.ER_NO_SEGMENTATION_MASK, shadow=0)
+            flags=pybullet.ER_NO_SEGMENTATION_MASK, shadow=0, lightDirection=self._light)
         rgb = np.asarray(rgba, dtype=np.uint8).reshape(height, width, 4)[:, :, :3]
         depth = metric_depth(np.reshape(zbuffer, (height, width)), self.config.near, self.config.far)
         return CameraFrame(_read_only(self._colour_noise(rgb)), _read_only(self._depth_noise(depth)),

@@ -24,8 +24,12 @@ from door_sim_bridge.walking.stabilizer import StabilizerOptions
 Colour = tuple[float, float, float]
 """RGB in [0, 1]."""
 
-MIN_COLOUR_DISTANCE = 0.15
-"""Smallest Euclidean RGB distance between any two scene colours (so segmentation can work)."""
+Direction = tuple[float, float, float]
+"""A direction in odom (any non-zero length; normalised where used)."""
+
+DEFAULT_LIGHT_DIRECTION: Direction = (-50.0, 30.0, 100.0)
+"""PyBullet TinyRenderer's own light for a z-up world (towards the light, odom axes): passing
+it explicitly renders exactly what the renderer did unasked."""
 
 
 class DoorOpening(str, Enum):
@@ -79,6 +83,16 @@ def _require_colour(owner: str, name: str, value: object) -> None:
         raise SimulationError(f"{owner}.{name} must be an (r, g, b) tuple in [0, 1], got {value!r}")
     for component in value:
         _require(owner, name, component, 0.0, 1.0)
+
+
+def _require_direction(owner: str, name: str, value: object) -> None:
+    """A finite (x, y, z) tuple with a length: a zero vector points nowhere."""
+    if not isinstance(value, tuple) or len(value) != 3:
+        raise SimulationError(f"{owner}.{name} must be an (x, y, z) tuple, got {value!r}")
+    for component in value:
+        _require(owner, name, component, -1e6, 1e6)
+    if math.hypot(*value) < 1e-9:
+        raise SimulationError(f"{owner}.{name} = {value!r} has no direction (zero length)")
 
 
 @dataclass(frozen=True)
@@ -169,14 +183,10 @@ class DoorConfig:
         _require("DoorConfig", "latch_play", self.latch_play, 0.0, self.latch_engage_angle, "rad")
 
     def _check_colours(self) -> None:
-        names = ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour")
-        for name in names:
+        """Each colour must be RGB in [0, 1]; any combination renders, so none is refused (a
+        white leaf on a white wall is a scene to detect, not a configuration error)."""
+        for name in ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour"):
             _require_colour("DoorConfig", name, getattr(self, name))
-        for i, first in enumerate(names):
-            for second in names[i + 1:]:
-                if math.dist(getattr(self, first), getattr(self, second)) < MIN_COLOUR_DISTANCE:
-                    raise SimulationError(f"DoorConfig.{first} and DoorConfig.{second} must differ "
-                                          f"by at least {MIN_COLOUR_DISTANCE} in RGB distance")
 
 
 _DOOR_RANGES: dict[str, tuple[float, float, str]] = {
@@ -213,7 +223,10 @@ class CameraConfig:
     """Head RGB-D camera (MultiSense-like), rendered by PyBullet's CPU TinyRenderer.
 
     Noise (off by default): depth sigma = depth_noise_coefficient * z**2 (stereo error grows with
-    the square of the range), colour sigma in 8-bit intensity levels.
+    the square of the range), colour sigma in 8-bit intensity levels. ``light_direction`` points
+    from the scene towards the (directional) light in odom; TinyRenderer shades a face by
+    0.6 + 0.35 max(n·l, 0) (ambient + diffuse), so faces at different angles to the light differ
+    in brightness even when painted alike.
     """
 
     width: int = 640  # px
@@ -226,8 +239,10 @@ class CameraConfig:
     colour_noise_sigma: float = 0.0  # intensity levels (0..255)
     head_pitch: float = 0.3  # rad, head tilted down so a door at 1-4 m and its handle are in view
     robot_visuals: RobotVisuals = RobotVisuals.ARMS
+    light_direction: Direction = DEFAULT_LIGHT_DIRECTION  # towards the light, odom
 
     def __post_init__(self) -> None:
+        _require_direction("CameraConfig", "light_direction", self.light_direction)
         _require_int("CameraConfig", "width", self.width, 16, 4096)
         _require_int("CameraConfig", "height", self.height, 16, 4096)
         check_ranges(self, {"vertical_fov_deg": (10.0, 120.0, "deg"), "near": (0.01, 1.0, "m"),

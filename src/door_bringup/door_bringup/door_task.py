@@ -2,14 +2,17 @@
 
     door_task [--opening push|pull] [--hinge left|right] [--autonomy supervised]
               [--operator auto|console] [--seed 0] [--backend sqp|chomp] [--run-dir DIR]
+              [--foxglove [--foxglove-port 8765]]
 
-Starts the sim bridge and the four nodes as separate processes (what ``ros2 launch
-door_bringup door_task.launch.py`` does on a real install), records every topic into a
-rosbag2 bag, plays the operator (``auto`` approves every request on
+Starts the sim bridge, the four nodes and the proposal markers as separate processes (what
+``ros2 launch door_bringup door_task.launch.py`` does on a real install), records every topic
+into a rosbag2 bag, plays the operator (``auto`` approves every request on
 /door_task/approval_request; ``console`` leaves it to you: ``./ros2 run door_fsm
 operator_console`` in another terminal), waits for the FSM's TaskReport, prints a table in
 the form of seed 001's Table I, stops the graph with SIGINT, and writes the run folder:
-``bag/``, ``logs/``, ``report.md``, ``report.json`` and plots.
+``bag/``, ``logs/``, ``report.md``, ``report.json`` and plots (``summary.png`` first). While it
+runs it prints the FSM's states and a progress line; ``--foxglove`` also serves the graph on a
+Foxglove WebSocket (ws://127.0.0.1:8765; layout in ``src/door_viz/layouts/door_task.json``).
 """
 
 from __future__ import annotations
@@ -27,8 +30,9 @@ from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from std_msgs.msg import String
 
-from door_bringup.graph_spec import GRAPH, NodeLaunch
+from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH, NodeLaunch
 from door_bringup.processes import ProcessSupervisor
+from door_bringup.progress_monitor import ProgressMonitor
 from door_bringup.run_plots import plot_run
 from door_bringup.table_one import format_table, phase_rows
 from door_bringup.workspace import Workspace, repository_root
@@ -59,7 +63,9 @@ class TaskOptions:
     timeout_s: float = 900.0
     record: bool = True
     storage: str = "sqlite3"
+    compression: str = "none"  # "zstd": compressed mcap chunks (with storage mcap)
     camera_rate: float = 2.0  # Hz of sim time; 10 Hz cuts detection to ~0.8 s but halves the sim's speed
+    foxglove_port: int | None = None  # serve the graph on ws://127.0.0.1:<port> (None: no live view)
 
     def node_overrides(self) -> dict[str, list[str]]:
         """``-p name:=value`` arguments per node."""
@@ -68,10 +74,11 @@ class TaskOptions:
                "depth_noise": self.depth_noise, "wind_amplitude": self.wind, "door_width": self.door_width,
                "handle_height": self.handle_height, "camera_rate": self.camera_rate}
         fsm = {"opening": self.opening, "autonomy": self.autonomy, "backend": self.backend}
-        own = {"sim_bridge": sim, "fsm_supervisor": fsm}
+        own = {"sim_bridge": sim, "fsm_supervisor": fsm,
+               "foxglove_bridge": {} if self.foxglove_port is None else {"port": self.foxglove_port}}
         return {launch.node_name: _ros_args({**own.get(launch.node_name, {}),
                                              **({"use_sim_time": True} if launch.use_sim_time else {})})
-                for launch in GRAPH}
+                for launch in (*GRAPH, FOXGLOVE_BRIDGE)}
 
 
 def _ros_args(values: dict) -> list[str]:
@@ -92,33 +99,36 @@ class ScriptedOperator(Node):
         self.base_xy: tuple[float, float] | None = None
         create_contract_subscription(self, Topics.ODOM, self._on_odom)
         self.command_pub = create_contract_publisher(self, Topics.OPERATOR)
+        self.progress = ProgressMonitor(self)
         create_contract_subscription(self, Topics.APPROVAL_REQUEST, self._on_request)
         create_contract_subscription(self, Topics.TASK_STATE, self._on_state)
         create_contract_subscription(self, Topics.TASK_REPORT, self._on_report)
 
     def _on_request(self, msg: String) -> None:
         if msg.data:
-            print(f"  [approval request] {msg.data}", flush=True)
+            self.progress.say(f"  [approval request] {msg.data}")
             request_id = request_id_of(msg.data)
             if self.approve and request_id is not None:
                 self.command_pub.publish(String(data=f"approve {request_id}"))
-                print(f"  [operator] approve {request_id}", flush=True)
+                self.progress.say(f"  [operator] approve {request_id}")
 
     def _on_state(self, msg: String) -> None:
         if not self.states or self.states[-1] != msg.data:
             self.states.append(msg.data)
-            print(f"  [state] {msg.data}", flush=True)
+            self.progress.say(f"  [state] {msg.data}")
 
     def _on_report(self, msg: String) -> None:
         self.report = decode(TaskReport, msg.data)
 
     def _on_odom(self, msg: Odometry) -> None:
         self.base_xy = (round(msg.pose.pose.position.x, 3), round(msg.pose.pose.position.y, 3))
+        self.progress.odom(msg)
 
 
 def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
     """Run the task once; returns the report as a dict (final_state FAILED when it never ended)."""
     supervisor = ProcessSupervisor(workspace, run_dir / "logs")
+    recorder = ProcessSupervisor(workspace, run_dir / "logs")  # stopped after the graph: the bag ends with DONE
     overrides = options.node_overrides()
     keep_discovery_local()  # the scripted operator's participant
     rclpy.init()
@@ -126,13 +136,18 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
     started = time.monotonic()
     try:
         if options.record:
-            supervisor.start(RECORDER, args=(str(run_dir / "bag"), "--storage", options.storage))
-        for launch in GRAPH:
+            recorder.start(RECORDER, args=(str(run_dir / "bag"), "--storage", options.storage,
+                                           "--compression", options.compression))
+        for launch in GRAPH + ((FOXGLOVE_BRIDGE,) if options.foxglove_port is not None else ()):
             supervisor.start(launch, overrides[launch.node_name])
         print(f"graph started ({len(GRAPH)} nodes); logs in {run_dir / 'logs'}", flush=True)
+        if options.foxglove_port is not None:
+            print(f"live view: Foxglove → open connection → ws://127.0.0.1:{options.foxglove_port}; layout "
+                  f"{workspace.root / 'src/door_viz/layouts/door_task.json'}", flush=True)
         report = _wait_for_report(operator, supervisor, options.timeout_s)
     finally:
-        codes = supervisor.stop()
+        operator.progress.printer.interrupt()
+        codes = {**supervisor.stop(), **recorder.stop()}
         operator.destroy_node()
         rclpy.try_shutdown()
     report["wall_time_s"] = round(time.monotonic() - started, 2)
@@ -145,6 +160,7 @@ def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, 
     deadline = time.monotonic() + timeout_s
     while operator.report is None and time.monotonic() < deadline:
         rclpy.spin_once(operator, timeout_sec=0.1)
+        operator.progress.tick()
         dead = [c.launch.node_name for c in supervisor.exited()]
         if dead:
             return {"final_state": "FAILED", "failure_reason": f"process(es) exited: {', '.join(dead)}",
@@ -186,14 +202,21 @@ def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
     parser.add_argument("--distance", type=float, default=3.0, help="start distance to the door (m)")
     parser.add_argument("--timeout", type=float, default=900.0, help="give up after this many seconds")
     parser.add_argument("--storage", choices=("sqlite3", "mcap"), default="sqlite3")
+    parser.add_argument("--compression", choices=("none", "zstd"), default="none",
+                        help="zstd: compressed mcap chunks (needs --storage mcap)")
     parser.add_argument("--camera-rate", type=float, default=2.0,
                         help="head camera frames per second of sim time (rendering costs ~0.1 s per frame)")
     parser.add_argument("--no-bag", action="store_true")
+    parser.add_argument("--foxglove", action="store_true", help="serve the graph live on a Foxglove WebSocket")
+    parser.add_argument("--foxglove-port", type=int, default=8765)
     parser.add_argument("--run-dir", type=Path, default=None)
     args, _ = parser.parse_known_args(argv)
+    if args.compression != "none" and args.storage != "mcap":
+        parser.error("--compression zstd needs --storage mcap")
     options = TaskOptions(args.opening, args.hinge, args.autonomy, args.operator, args.seed, args.backend,
                           args.distance, timeout_s=args.timeout, record=not args.no_bag, storage=args.storage,
-                          camera_rate=args.camera_rate)
+                          camera_rate=args.camera_rate, compression=args.compression,
+                          foxglove_port=args.foxglove_port if args.foxglove else None)
     return options, args.run_dir
 
 
@@ -208,7 +231,7 @@ def main(argv: list[str] | None = None) -> int:
     report = run_task(options, run_dir, workspace)
     table = write_report(run_dir, options, report)
     print(table, flush=True)
-    for plot in plot_run(run_dir):
+    for plot in plot_run(run_dir, options.opening):
         print(f"plot: {plot}", flush=True)
     print(f"\nreport: {run_dir / 'report.md'}", flush=True)
     return 0 if report["final_state"] == "DONE" else 1

@@ -1,4 +1,4 @@
-"""The node graph of DESIGN.md: which executable of which package runs which node."""
+"""The node graph of DESIGN.md (and its proposal markers): which executable of which package runs which node."""
 
 from __future__ import annotations
 
@@ -10,7 +10,9 @@ class NodeLaunch:
     package: str
     executable: str
     node_name: str
-    use_sim_time: bool = True  # every node but the clock's source runs on /clock (docs/CLOCKS.md)
+    #: run on /clock (docs/CLOCKS.md): every node but the clock's source and the ones needing no time
+    #: (use_sim_time subscribes a node to the 100 Hz /clock)
+    use_sim_time: bool = True
 
 
 GRAPH = (
@@ -19,4 +21,8 @@ GRAPH = (
     NodeLaunch("footstep_planner", "footstep_planner", "footstep_planner"),
     NodeLaunch("door_trajopt", "trajectory_optimizer", "trajectory_optimizer"),
     NodeLaunch("door_fsm", "fsm_supervisor", "fsm_supervisor"),
+    NodeLaunch("door_viz", "proposal_markers", "proposal_markers", use_sim_time=False),  # needs no time
 )
+
+#: The live view (``door_task --foxglove``): not part of the task, so not in GRAPH.
+FOXGLOVE_BRIDGE = NodeLaunch("door_viz", "foxglove_bridge", "foxglove_bridge")

@@ -16,6 +16,7 @@ from door_detection.parameters import DETECTOR_PARAMETERS
 from door_fsm.parameters import SUPERVISOR_PARAMETERS
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS
 from door_trajopt.parameters import OPTIMIZER_PARAMETERS
+from door_viz.parameters import FOXGLOVE_NODE, FOXGLOVE_PARAMETERS, MARKERS_NODE, MARKERS_PARAMETERS
 from footstep_planner.parameters import PLANNER_PARAMETERS
 
 SPECS_BY_NODE = {
@@ -24,6 +25,8 @@ SPECS_BY_NODE = {
     "footstep_planner": PLANNER_PARAMETERS,
     "trajectory_optimizer": OPTIMIZER_PARAMETERS,
     "fsm_supervisor": SUPERVISOR_PARAMETERS,
+    MARKERS_NODE: MARKERS_PARAMETERS,
+    FOXGLOVE_NODE: FOXGLOVE_PARAMETERS,
 }
 
 

@@ -1,5 +1,7 @@
 """Plots of a run, drawn from its rosbag (the bag is the run's complete audit trail).
 
+* ``summary.png``: the one figure of the run (:mod:`door_bringup.summary_figure`): top view,
+  door angle, hand–handle distance, centre of mass against the support polygon;
 * ``footsteps.png``: top view of the door estimate, the executed footstep plans and the
   base's path from /odom;
 * ``trajectories.png``: each planned motion's joints, initial guess (dashed) against the
@@ -20,6 +22,7 @@ import numpy as np  # noqa: E402
 from rclpy.serialization import deserialize_message  # noqa: E402
 
 from door_bringup.bags.storage import read_messages  # noqa: E402
+from door_bringup.summary_figure import plot_summary  # noqa: E402
 from door_contract.converters.footsteps import Foot, path_to_footsteps  # noqa: E402
 from door_contract.converters.image import image_to_array  # noqa: E402
 from door_contract.topics import Topics  # noqa: E402
@@ -93,12 +96,13 @@ def save_detection(bag: Path, output: Path) -> Path | None:
     return output
 
 
-def plot_run(run_dir: Path) -> list[Path]:
+def plot_run(run_dir: Path, opening: str | None = None) -> list[Path]:
     """Every plot the run's bag allows; returns the files written."""
     bag = run_dir / "bag"
     if not (bag / "metadata.yaml").is_file():
         return []
-    written = [plot_footsteps(bag, run_dir / "footsteps.png"),
+    written = [plot_summary(bag, run_dir / "summary.png", opening=opening),
+               plot_footsteps(bag, run_dir / "footsteps.png"),
                plot_trajectories(bag, run_dir / "trajectories.png"),
                save_detection(bag, run_dir / "detection.png")]
     return [path for path in written if path is not None]

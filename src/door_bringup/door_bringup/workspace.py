@@ -80,7 +80,9 @@ class Workspace:
         site = f"lib/python{sys.version_info.major}.{sys.version_info.minor}/site-packages"
         python_paths = [str(p / site) for p in prefixes]
         env["PYTHONPATH"] = os.pathsep.join(python_paths + [v for v in [env.get("PYTHONPATH")] if v])
-        env["AMENT_PREFIX_PATH"] = os.pathsep.join([str(p) for p in prefixes] + [sys.prefix])
+        # existing entries stay (a real install's /opt/ros/jazzy: type support is found through it)
+        ament = [str(p) for p in prefixes] + [sys.prefix] + [v for v in env.get("AMENT_PREFIX_PATH", "").split(os.pathsep) if v]
+        env["AMENT_PREFIX_PATH"] = os.pathsep.join(dict.fromkeys(ament))
         env.setdefault("ROS_AUTOMATIC_DISCOVERY_RANGE", "LOCALHOST")
         env.setdefault("FASTRTPS_DEFAULT_PROFILES_FILE", str(self.params / "fastdds_profile.xml"))
         env.setdefault("DOOR_PARAMS_DIR", str(self.params))

@@ -4,7 +4,9 @@ Each frame (colour + depth + CameraInfo + the camera's pose in odom, matched by 
 goes through the automatic pipeline (seed 001 Sec. III-A) — or, when the operator has
 scribbled on the handle (``/operator/scribble``), the operator-aided one (Sec. III-B),
 which then takes precedence. Estimates are moved into ``odom`` and voted over the last N
-frames; the consensus goes out as ``/door/estimate``, ``/door/handle_pose`` and markers.
+frames (a sequential vote: confirmed as soon as enough agree precisely, whatever view of
+the head search they came from); the consensus goes out as ``/door/estimate``,
+``/door/handle_pose`` and markers.
 Bad frames (empty, wrong encoding, size mismatch, no valid depth, inconsistent
 CameraInfo) are logged and counted; nothing is published. A frame that never completes
 (e.g. no CameraInfo) is reported on /diagnostics with the stream it lacked. A scribble is
@@ -48,6 +50,8 @@ from door_detection.scribble import scribble_problem
 from door_detection.voting import Voter
 
 STREAMS = ("color", "depth", "info", "pose")
+VOTE_PARAMETERS = ("vote_frames", "vote_min_agreeing", "vote_handle_confidence", "vote_normal_confidence_deg")
+"""Node parameters that are the sequential vote's DetectionOptions fields of the same name."""
 
 
 class DoorDetectorNode(Node):
@@ -57,8 +61,8 @@ class DoorDetectorNode(Node):
         self.parameters = p
         require_ordered(p, "door_width_min", "door_width_max")
         with as_parameter_error("detection options", DetectionError):
-            self.options = DetectionOptions(vote_frames=p["vote_frames"], door_width_min=p["door_width_min"],
-                                            door_width_max=p["door_width_max"])
+            self.options = DetectionOptions(door_width_min=p["door_width_min"], door_width_max=p["door_width_max"],
+                                            **{name: p[name] for name in VOTE_PARAMETERS})
         self.voter = Voter(self.options)
         self.pending: OrderedDict[float, dict] = OrderedDict()  # stamp → {stream: message}
         self.scribble: tuple[float, np.ndarray] | None = None  # (wall time, N×2 pixels)
@@ -72,7 +76,8 @@ class DoorDetectorNode(Node):
                                            Topics.CAMERA_POSE)):
             create_contract_subscription(self, topic, lambda msg, s=stream: self._on_stream(s, msg))
         create_contract_subscription(self, Topics.SCRIBBLE, self._on_scribble)
-        self.get_logger().info(f"ready: voting over {p['vote_frames']} frames, doors "
+        self.get_logger().info(f"ready: voting over {p['vote_frames']} frames (confirmed from "
+                               f"{p['vote_min_agreeing']} agreeing), doors "
                                f"{p['door_width_min']:.2f}–{p['door_width_max']:.2f} m")
 
     # ------------------------------------------------------------------ inputs

@@ -3,8 +3,8 @@
 For a pair of image lines (L left, R right) the paper's door D = (P1, P2, S_P) must
 satisfy (eq. 2):
 
-* 80 cm ≤ ‖P1 − P2‖ ≤ 100 cm: the perpendicular distance between the RANSAC 3-D lines
-  of the two edges is a door's width;
+* 80 cm ≤ ‖P1 − P2‖ ≤ 100 cm: the image edges' rays, cut with the plane of the two edges'
+  RANSAC 3-D lines, are a door's width apart (:func:`~door_detection.edges.edge_width`);
 * every P in S_P lies on one plane, (a − P)·b = 0: points sampled on the two image
   diagonals of the door back-project to within 5 cm of the plane spanned by the edges.
 
@@ -22,11 +22,12 @@ samples noisier than ``max_depth_noise`` are no smooth surface and are rejected.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
+from door_detection.edges import edge_width
 from door_detection.lines import VerticalLines
 from door_detection.options import DetectionOptions
 from door_detection.plane import Line3D, Plane, depth_noise, pixel_rays, ransac_line, sample_depth
@@ -44,9 +45,10 @@ class DoorCandidate:
     """A door hypothesis that passed the width and plane checks.
 
     ``left``/``right`` index the image lines; ``top``/``bottom`` are the rows both edges
-    span; ``plane`` has its normal towards the camera (cross product of the line joining
-    the edges and an edge, Sec. III-A); ``plane_fraction`` is the fraction of valid
-    diagonal samples on it.
+    span, ``outer_top``/``outer_bottom`` the rows either spans (a faint edge's line may
+    cover only part of the door); ``plane`` has its normal towards the camera (cross
+    product of the line joining the edges and an edge, Sec. III-A); ``plane_fraction`` is
+    the fraction of valid diagonal samples on it.
     """
 
     left: int
@@ -59,14 +61,22 @@ class DoorCandidate:
     top: float
     bottom: float
     score: float
+    outer_top: float = math.nan
+    outer_bottom: float = math.nan
 
-    def image_corners(self, lines: VerticalLines) -> np.ndarray:
-        """(4, 2) pixels: bottom-left, bottom-right, top-right, top-left."""
-        xs = lines.x_at(np.array([[self.bottom, self.top]] * len(lines)))
+    @property
+    def partly_seen(self) -> bool:
+        """One edge's line spans rows the other's does not."""
+        return bool(self.outer_top < self.top or self.outer_bottom > self.bottom)
+
+    def image_corners(self, lines: VerticalLines, outer: bool = False) -> np.ndarray:
+        """(4, 2) pixels: bottom-left, bottom-right, top-right, top-left, on the rows both edges
+        span (``outer``: either spans, the shorter line extended)."""
+        top, bottom = (self.outer_top, self.outer_bottom) if outer else (self.top, self.bottom)
+        xs = lines.x_at(np.array([[bottom, top]] * len(lines)))
         xl_bottom, xl_top = xs[self.left]
         xr_bottom, xr_top = xs[self.right]
-        return np.array([[xl_bottom, self.bottom], [xr_bottom, self.bottom],
-                         [xr_top, self.top], [xl_top, self.top]])
+        return np.array([[xl_bottom, bottom], [xr_bottom, bottom], [xr_top, top], [xl_top, top]])
 
 
 def find_doors(lines: VerticalLines, depth: np.ndarray, intrinsics: CameraIntrinsics,
@@ -155,15 +165,18 @@ def _sized_candidate(lines: VerticalLines, left: int, right: int, depth: np.ndar
         return None
     across = right_edge.point - left_edge.point
     across_perp = across - float(across @ direction) * direction
-    width = float(np.linalg.norm(across_perp))
-    if not options.door_width_min <= width <= options.door_width_max:
-        return None
     normal = np.cross(direction, across_perp)
     plane = Plane(0.5 * (left_edge.point + right_edge.point), normal / np.linalg.norm(normal))
     s = lines.segments
     top, bottom = max(s[left, 1], s[right, 1]), min(s[left, 3], s[right, 3])
-    return DoorCandidate(left, right, left_edge, right_edge, width, plane.facing(np.zeros(3)),
-                         0.0, float(top), float(bottom), 0.0)
+    candidate = DoorCandidate(left, right, left_edge, right_edge, 0.0, plane.facing(np.zeros(3)),
+                              0.0, float(top), float(bottom), 0.0, float(min(s[left, 1], s[right, 1])),
+                              float(max(s[left, 3], s[right, 3])))
+    width = edge_width(corners_3d(candidate, lines, candidate.plane, intrinsics))
+    tolerance = options.door_width_tolerance
+    if not options.door_width_min - tolerance <= width <= options.door_width_max + tolerance:
+        return None
+    return replace(candidate, width=width)
 
 
 def _mean_direction(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -242,9 +255,7 @@ def _check_plane(candidate: DoorCandidate, lines: VerticalLines, depth: np.ndarr
         return None
     edges = 0.5 * (candidate.left_edge.inlier_fraction + candidate.right_edge.inlier_fraction)
     height = (candidate.bottom - candidate.top) / depth.shape[0]
-    return DoorCandidate(candidate.left, candidate.right, candidate.left_edge, candidate.right_edge,
-                         candidate.width, candidate.plane, fraction, candidate.top, candidate.bottom,
-                         fraction + edges + height)
+    return replace(candidate, plane_fraction=fraction, score=fraction + edges + height)
 
 
 def door_surface_points(candidate: DoorCandidate, lines: VerticalLines, depth: np.ndarray,

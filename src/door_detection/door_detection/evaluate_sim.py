@@ -1,11 +1,15 @@
 """Evaluation on rendered scenes of the simulation core, in the form of the paper's Table II.
 
-``python -m door_detection.evaluate_sim [--quick] [--colours all] [--noise 0 0.003]``
+``python -m door_detection.evaluate_sim [--trials N] [--quick]`` — **Table II with the head
+search** (:mod:`~door_detection.table_two`): randomised starts over 1–4 m × ±0.6 rad as the
+graph's robot has them (640×480 head camera, door partly out of view at the wider angles),
+the head and body search, the sequential vote in odom; automatic and operator-aided.
 
-For every (distance, viewing angle, depth noise) cell — and door/handle colours and hinge
-side cycled over the cells, or all colour pairs with ``--colours all`` — a
-:class:`~door_detection.sim_scenes.Scenario` is rendered by the sim core's ``DoorWorld``
-(1024×544 head camera) and both detectors run on the frame:
+``python -m door_detection.evaluate_sim --single-frame [--quick] [--colours all] [--noise 0 0.003]``
+— single frames: for every (distance, viewing angle, depth noise) cell — and door/handle
+colours and hinge side cycled over the cells, or all colour pairs with ``--colours all`` — a
+:class:`~door_detection.sim_scenes.Scenario` (the robot facing the door centre, 1024×544
+head camera aimed at the handle) is rendered once and both detectors run on the frame:
 
 * automatic (Sec. III-A), no prior knowledge;
 * operator-aided (Sec. III-B) on a synthetic scribble (the projected lever's outline with
@@ -35,19 +39,9 @@ from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
 from door_detection.sim_scenes import DOOR_COLOURS, HANDLE_COLOURS, Scenario, SceneFrame, render_scenario
+from door_detection.tables import (HANDLE_TOLERANCE, NORMAL_TOLERANCE_DEG, MODES, paper_table, success_table,
+                                   summary)
 
-HANDLE_TOLERANCE = 0.02
-"""Success: handle within this distance of the ground truth (m)."""
-NORMAL_TOLERANCE_DEG = 2.0
-"""Success: normal within this angle of the ground truth (deg)."""
-PAPER_TABLE_II = (
-    ("2.6 - 4 m", "-", "failure", "-0.5 to 0.6", "success"),
-    ("2.41 - 2.6 m", "-0.35 to 0.55", "success", "-0.45 to 0.55", "success"),
-    ("1.8 - 2.41 m", "-0.2 to 0.5", "success", "-0.35 to 0.5", "success"),
-    ("1.4 - 1.8 m", "-0.5 to 0.0", "success", "-0.5 to 0.45", "success"),
-    ("1 - 1.3 m", "-", "failure", "-0.2 to 0.2", "success"),
-)
-"""Seed 001 Table II: distance, automatic orientation range and result, operator-aided."""
 
 
 @dataclass(frozen=True)
@@ -132,91 +126,59 @@ def run_evaluation(grid: EvaluationGrid, options: DetectionOptions | None = None
     return outcomes
 
 
-def _mode(outcome: SceneOutcome, mode: str) -> ModeOutcome:
-    return outcome.automatic if mode == "automatic" else outcome.operator
-
-
-def success_table(outcomes: Sequence[SceneOutcome], mode: str, grid: EvaluationGrid) -> str:
-    """Rows: distances; columns: angle bins (successes/scenes); then the paper-style range
-    of angles where every scene succeeded and the row's success rate."""
-    per_cell = max(len([o for o in outcomes if o.scenario.distance == d and o.scenario.yaw == y])
-                   for d in grid.distances for y in grid.yaws)
-    width = max(5, 2 * len(str(per_cell)) + 1)
-    header = ("distance | " + " | ".join(f"{yaw:+.1f}".center(width) for yaw in grid.yaws) +
-              " | orientation range (rad) | success")
-    lines = [header, "-" * len(header)]
-    for distance in grid.distances:
-        cells, good = [], []
-        for yaw in grid.yaws:
-            cell = [_mode(o, mode) for o in outcomes
-                    if o.scenario.distance == distance and o.scenario.yaw == yaw]
-            wins = sum(m.success for m in cell)
-            cells.append(f"{wins}/{len(cell)}".center(width))
-            if cell and wins == len(cell):
-                good.append(yaw)
-        span = f"{min(good):+.1f} to {max(good):+.1f}" if good else "-"
-        rate = _rate([_mode(o, mode) for o in outcomes if o.scenario.distance == distance])
-        lines.append(f"{distance:6.1f} m | " + " | ".join(cells) + f" | {span:^23} | {rate:6.1%}")
-    return "\n".join(lines)
-
-
-def _rate(modes: Sequence[ModeOutcome]) -> float:
-    return sum(m.success for m in modes) / max(len(modes), 1)
-
-
-def summary(outcomes: Sequence[SceneOutcome], mode: str) -> str:
-    """Overall success, error percentiles of detected frames, failures, time per frame."""
-    modes = [_mode(o, mode) for o in outcomes]
-    detected = [m for m in modes if math.isfinite(m.handle_error)]
-    times = np.array([m.seconds for m in modes if m.seconds > 0]) * 1000
-    failures: dict[str, int] = {}
-    for m in modes:
-        if not m.success:
-            key = m.outcome if not math.isfinite(m.handle_error) else "outside tolerance"
-            failures[key] = failures.get(key, 0) + 1
-    text = [f"{mode}: success {sum(m.success for m in modes)}/{len(modes)} ({_rate(modes):.1%})"]
-    if detected:
-        handle = np.array([m.handle_error for m in detected]) * 100
-        normal = np.array([m.normal_error for m in detected])
-        text.append(f"  handle error cm: median {np.median(handle):.2f}, 95% {np.percentile(handle, 95):.2f}, "
-                    f"max {handle.max():.2f}; normal error deg: median {np.median(normal):.2f}, "
-                    f"95% {np.percentile(normal, 95):.2f}, max {normal.max():.2f}")
-    if times.size:
-        text.append(f"  time per frame: median {np.median(times):.1f} ms, "
-                    f"95% {np.percentile(times, 95):.1f} ms, max {times.max():.1f} ms")
-    if failures:
-        text.append("  failures: " + ", ".join(f"{k} {v}" for k, v in sorted(failures.items())))
-    return "\n".join(text)
-
-
-def paper_table() -> str:
-    """Seed 001 Table II, for comparison."""
-    lines = ["Seed 001 Table II (Atlas, DRC): distance | automatic range, result | operator-aided range, result"]
-    lines += [f"  {d:>12} | {a:>13}, {ar:<7} | {o:>13}, {orr}" for d, a, ar, o, orr in PAPER_TABLE_II]
-    return "\n".join(lines)
-
-
 def report(outcomes: Sequence[SceneOutcome], grid: EvaluationGrid) -> str:
     """The full text report."""
     parts = [f"{len(outcomes)} scenes; success = handle within {HANDLE_TOLERANCE * 100:.0f} cm and normal "
              f"within {NORMAL_TOLERANCE_DEG:.0f}°; depth noise k ∈ {list(grid.noises)} (σ = k·z²)"]
-    for mode in ("automatic", "operator"):
+    for mode in MODES:
         parts += ["", f"== {mode} (successes / scenes per distance × viewing angle) ==",
                   success_table(outcomes, mode, grid), summary(outcomes, mode)]
     parts += ["", paper_table()]
     return "\n".join(parts)
 
 
-def main(argv: Sequence[str] | None = None) -> int:
+def _arguments(argv: Sequence[str] | None) -> argparse.Namespace:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--quick", action="store_true", help="4 distances × 3 angles, no noise")
+    parser.add_argument("--single-frame", action="store_true",
+                        help="single frames of a robot facing the door (1024×544), not the head search")
+    parser.add_argument("--quick", action="store_true", help="4 distances × 3 angles (single frames: no noise)")
+    parser.add_argument("--trials", type=int, default=2, help="head search: randomised starts per cell")
+    parser.add_argument("--lateral", type=float, default=0.6, help="head search: lateral offsets up to ± this (m)")
+    parser.add_argument("--camera-rate", type=float, default=2.0, help="head search: frames per sim second")
+    parser.add_argument("--jobs", type=int, default=1, help="head search: trials run in this many processes")
     parser.add_argument("--colours", choices=("cycle", "all"), default="cycle",
-                        help="cycle colour pairs over the cells, or run every pair in every cell")
+                        help="single frames: cycle colour pairs over the cells, or run every pair in every cell")
     parser.add_argument("--noise", type=float, nargs="+", default=None,
-                        help="depth noise coefficients k (σ = k·z²), default 0 0.003")
+                        help="depth noise coefficients k (σ = k·z²); single frames: default 0 0.003; "
+                             "head search: the largest k (default 0.005)")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--no-progress", action="store_true")
-    args = parser.parse_args(argv)
+    return parser.parse_args(argv)
+
+
+def _table_two(args: argparse.Namespace) -> str:
+    from door_detection.neck import neck_of
+    from door_detection.search_trial import SearchSettings
+    from door_detection.table_two import TableTwoGrid, report, run_table
+    from door_robot.kinematics import RobotKinematics
+    from door_robot.profile import load_profile
+
+    grid = TableTwoGrid(trials=max(args.trials, 1), lateral_range=args.lateral, seed=args.seed,
+                        max_depth_noise=max(args.noise) if args.noise else 0.005)
+    if args.quick:
+        grid = TableTwoGrid((1.0, 2.0, 3.0, 4.0), (-0.6, 0.0, 0.6), grid.trials, grid.lateral_range,
+                            grid.max_depth_noise, grid.seed)
+    settings = SearchSettings(camera_rate=args.camera_rate)
+    neck = neck_of(RobotKinematics(load_profile("talos")))
+    results = run_table(grid, neck, progress=not args.no_progress, jobs=max(args.jobs, 1), settings=settings)
+    return report(results, grid, settings)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    args = _arguments(argv)
+    if not args.single_frame:
+        print(_table_two(args))
+        return 0
     grid = EvaluationGrid(seed=args.seed, all_colours=args.colours == "all")
     if args.quick:
         grid = EvaluationGrid((1.0, 2.0, 3.0, 4.0), (-0.6, 0.0, 0.6), (0.0,), grid.all_colours, args.seed)

@@ -69,6 +69,14 @@ class HandleBlob:
         return float(self.cols.mean()), float(self.rows.mean())
 
 
+def touches_border(blob: HandleBlob, shape: tuple[int, ...]) -> bool:
+    """The blob reaches the image's outermost rows or columns: part of the handle may lie
+    beyond them, so its extent (the lever's tip, hence the grasp point) is unknown."""
+    height, width = shape[:2]
+    return bool(blob.cols.min() <= 0 or blob.rows.min() <= 0 or blob.cols.max() >= width - 1
+                or blob.rows.max() >= height - 1)
+
+
 def colour_stats(pixels: np.ndarray) -> ColourStats:
     """µ and σ of an (N, 3) set of pixels."""
     values = pixels.reshape(-1, 3).astype(np.float64)

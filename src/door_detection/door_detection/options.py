@@ -20,6 +20,7 @@ def _ranges() -> dict[str, FieldRange]:
     r = FieldRange
     return {
         "line_scale": r(0.1, 1.0, "", low_open=True),
+        "histogram_clip_limit": r(0.0, 40.0, ""),
         "bilateral_diameter": r(1, 15, "px"),
         "bilateral_sigma_color": r(0.0, 255.0, "grey levels", low_open=True),
         "bilateral_sigma_space": r(0.0, 50.0, "px", low_open=True),
@@ -38,6 +39,7 @@ def _ranges() -> dict[str, FieldRange]:
         "edge_depth_offset": r(0, 30, "px"),
         "door_width_min": r(0.3, 2.0, "m"),
         "door_width_max": r(0.3, 2.5, "m"),
+        "door_width_tolerance": r(0.0, 0.2, "m"),
         "min_depth": r(0.0, 5.0, "m", low_open=True),
         "max_depth": r(0.5, 100.0, "m"),
         "max_depth_noise": r(0.0, 1.0, "m", low_open=True),
@@ -79,6 +81,9 @@ def _ranges() -> dict[str, FieldRange]:
         "vote_frames": r(1, 100, "frames"),
         "vote_handle_distance": r(0.0, 1.0, "m", low_open=True),
         "vote_normal_angle_deg": r(0.0, 90.0, "deg", low_open=True),
+        "vote_min_agreeing": r(1, 100, "frames"),
+        "vote_handle_confidence": r(0.0, 0.1, "m", low_open=True),
+        "vote_normal_confidence_deg": r(0.0, 10.0, "deg", low_open=True),
         "random_seed": r(0, 2**31 - 1, ""),
     }
 
@@ -96,6 +101,12 @@ class DetectionOptions:
     outer edge replaces the leaf's, and the width (hence the hinge the door motions turn
     about) is off by 4–8 cm. On the real photos full scale finds as many doors but more
     clutter (see RESULTS.md)."""
+    histogram_clip_limit: float = 4.0
+    """Contrast limit of the histogram equalisation (× the mean bin height), [0, 40]; 0 is the
+    paper's plain equalisation (Sec. III-A: "histogram equalization"), which erases small
+    steps next to a dominant grey (see ``preprocessing.equalise_luma``). Any clip keeps an
+    11-level step of a white scene; on the 31 real photos (``evaluate_photos``) 4 found as
+    many doors as plain equalisation (17 of 35) and 2 only 12."""
     bilateral_diameter: int = 5
     """Bilateral filter neighbourhood diameter (px of the scaled image), [1, 15]
     (Sec. III-A: "a bilateral filter is applied to smooth the image")."""
@@ -103,10 +114,13 @@ class DetectionOptions:
     """Bilateral filter range sigma (grey levels), (0, 255]."""
     bilateral_sigma_space: float = 3.0
     """Bilateral filter spatial sigma (px of the scaled image), (0, 50]."""
-    canny_low: int = 15
+    canny_low: int = 10
     """Canny hysteresis low threshold (gradient magnitude), [1, 1000] (Sec. III-A)."""
-    canny_high: int = 45
-    """Canny hysteresis high threshold (gradient magnitude), [1, 1000], >= canny_low."""
+    canny_high: int = 30
+    """Canny hysteresis high threshold (gradient magnitude), [1, 1000], >= canny_low. A grey-blue
+    leaf in a grey frame differs by ~9 levels in each YCrCb channel, which OpenCV's 3×3 Sobel
+    (L1 norm) makes a gradient of ~36: 45 lost that edge (the leaf then paired with the far
+    jamb's outer edge, 1.05 m, and was refused); 30 keeps it."""
     hough_rho: float = 1.0
     """Probabilistic Hough distance resolution (px of the scaled image), (0, 10]."""
     hough_theta_deg: float = 0.5
@@ -147,6 +161,11 @@ class DetectionOptions:
     """Narrowest door accepted (m), [0.3, 2]. Sec. III-A: 90 ± 10 cm (DRC door 36 in)."""
     door_width_max: float = 1.00
     """Widest door accepted (m), [0.3, 2.5], >= door_width_min. Sec. III-A: 90 ± 10 cm."""
+    door_width_tolerance: float = 0.03
+    """The pairing gate accepts widths this much outside [door_width_min, door_width_max] (m),
+    [0, 0.2]. Not in the paper: the gate measures between the Hough lines, which lie up to
+    ~2 px outside the leaf (1.5 cm at 3 m with f = 415 px; a 1.00 m leaf measured 1.005–1.009 m);
+    the width reported is measured again on the sub-pixel edges (:mod:`~door_detection.edges`)."""
     min_depth: float = 0.3
     """Nearer depth readings are invalid (m), (0, 5]."""
     max_depth: float = 8.0
@@ -263,11 +282,25 @@ class DetectionOptions:
     # --- vote over frames (Sec. III-A, last paragraph) ---
     vote_frames: int = 10
     """Window N of the vote (frames), [1, 100]. Sec. III-A: "the entire algorithm is
-    repeated over a window of 10 frames"."""
+    repeated over a window of 10 frames"; here the vote may confirm before N frames (see
+    :mod:`~door_detection.voting`)."""
     vote_handle_distance: float = 0.03
     """Two estimates agree when their handles are closer than this (m), (0, 1]."""
     vote_normal_angle_deg: float = 5.0
     """... and their normals differ by less than this (deg), (0, 90]."""
+    vote_min_agreeing: int = 2
+    """Agreeing estimates a door needs to be confirmed (frames), [1, 100], more than half of
+    the window's estimates. Not in the paper (it waited for the full window): one frame can
+    hold a wrong door, two agreeing ones from a still or moving camera rarely do."""
+    vote_handle_confidence: float = 0.01
+    """Largest half-width of the 95 % confidence interval of the confirmed handle,
+    t₀.₉₇₅(n − 1)·‖s‖/√n over the n agreeing estimates (m), (0, 0.1]: half the 2 cm grasp
+    tolerance (seed 001 Sec. IV). Student's t makes two noisy frames that happen to agree
+    wait (t = 12.7 for n = 2): with a standard error alone, 2 of 490 Table II doors were
+    confirmed 2.3–3.4 cm off; exactly agreeing frames (clean depth) still confirm at n = 2."""
+    vote_normal_confidence_deg: float = 1.0
+    """Largest half-width of the 95 % confidence interval of the confirmed normal (deg),
+    (0, 10]: half the 2° tolerance."""
     random_seed: int = 0
     """Seed of the RANSAC generators, so a run is reproducible, [0, 2^31 − 1]."""
 
@@ -293,7 +326,3 @@ class DetectionOptions:
             raise DetectionError(f"{low} = {getattr(self, low)!r} must be below "
                                  f"{high} = {getattr(self, high)!r}")
 
-    @property
-    def vote_majority(self) -> int:
-        """Agreeing estimates needed to publish: ⌊N/2⌋ + 1."""
-        return self.vote_frames // 2 + 1

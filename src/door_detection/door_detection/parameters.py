@@ -5,8 +5,14 @@ from door_contract.parameters import ParameterSpec
 NODE_NAME = "door_detector"
 
 DETECTOR_PARAMETERS = (
-    ParameterSpec("vote_frames", 10, "frames voted over before an estimate is published "
+    ParameterSpec("vote_frames", 10, "window of the vote: frames whose estimates are voted on "
                   "(seed 001 Sec. III-A: 10)", minimum=1, maximum=100),
+    ParameterSpec("vote_min_agreeing", 2, "agreeing estimates (more than half of the window's) that "
+                  "confirm a door before the window is full", unit="frames", minimum=1, maximum=100),
+    ParameterSpec("vote_handle_confidence", 0.01, "largest 95 % confidence half-width of the confirmed "
+                  "handle position; noisier estimates wait for more frames", unit="m", minimum=0.0001, maximum=0.1),
+    ParameterSpec("vote_normal_confidence_deg", 1.0, "largest 95 % confidence half-width of the confirmed "
+                  "door normal", unit="deg", minimum=0.01, maximum=10.0),
     ParameterSpec("door_width_min", 0.80, "narrowest door accepted", unit="m", minimum=0.3, maximum=2.0),
     ParameterSpec("door_width_max", 1.00, "widest door accepted", unit="m", minimum=0.3, maximum=2.5),
     ParameterSpec("nominal_door_width", 0.914, "door width assumed when only the handle is measured "

@@ -93,12 +93,28 @@ def _validate_depth(depth: np.ndarray, shape: tuple[int, int], options: Detectio
     return metres
 
 
+def equalise_luma(luma: np.ndarray, clip_limit: float) -> np.ndarray:
+    """Histogram equalisation of an 8-bit image, contrast-limited when ``clip_limit`` > 0.
+
+    Plain equalisation maps level L to 255·CDF(L): a scene of one dominant grey (a white
+    leaf in a white wall and frame) sends that grey to 254 and every brighter level to 255,
+    erasing the 11-level step of a lit jamb face. Clipping each histogram bin at
+    ``clip_limit`` × the mean bin height and spreading the excess evenly (OpenCV's CLAHE on
+    a single tile) bounds the mapping's slope by about ``clip_limit`` + 1, so a small step
+    stays a step while a dim image is still stretched.
+    """
+    if clip_limit <= 0.0:
+        return cv2.equalizeHist(luma)
+    return cv2.createCLAHE(clipLimit=clip_limit, tileGridSize=(1, 1)).apply(luma)
+
+
 def edge_image(rgb: np.ndarray, options: DetectionOptions) -> np.ndarray:
     """Canny edges of the scaled, equalised, bilateral-filtered image (Sec. III-A).
 
     The image is first shrunk by ``line_scale`` (INTER_AREA).  Histogram equalisation
-    (the paper's first step) is applied to the luma Y of YCrCb, spreading the grey levels
-    over 0..255 so fixed Canny thresholds work under any exposure; the bilateral filter
+    (the paper's first step; contrast-limited, :func:`equalise_luma`) is applied to the luma
+    Y of YCrCb, spreading the grey levels over 0..255 so fixed Canny thresholds work under
+    any exposure; the bilateral filter
     smooths texture but keeps edges; Canny runs on all three channels (OpenCV takes the
     strongest channel gradient).  Beyond the paper: keeping the chroma finds edges
     between surfaces of equal brightness (a light-wood door in a white-grey frame, whose
@@ -109,7 +125,7 @@ def edge_image(rgb: np.ndarray, options: DetectionOptions) -> np.ndarray:
         small = cv2.resize(rgb, None, fx=options.line_scale, fy=options.line_scale,
                            interpolation=cv2.INTER_AREA)
     ycc = cv2.cvtColor(small, cv2.COLOR_RGB2YCrCb)
-    ycc[:, :, 0] = cv2.equalizeHist(ycc[:, :, 0])
+    ycc[:, :, 0] = equalise_luma(ycc[:, :, 0], options.histogram_clip_limit)
     smooth = cv2.bilateralFilter(ycc, options.bilateral_diameter,
                                  options.bilateral_sigma_color, options.bilateral_sigma_space)
     return cv2.Canny(smooth, options.canny_low, options.canny_high)

@@ -83,7 +83,7 @@ def render_scenario(scenario: Scenario, scribble_noise_px: float = 2.0) -> Scene
         camera = frame.camera_pose
         grasp = world.handle_grasp_pose()
         truth = world.door_ground_truth()
-        lever = _lever_corners(world)
+        lever = lever_corners(world)
     rotation, origin = camera[:3, :3], camera[:3, 3]
     handle = (grasp[:3, 3] - origin) @ rotation
     normal = truth.normal @ rotation
@@ -111,7 +111,7 @@ def _world_config(scenario: Scenario) -> object:
     return WorldConfig(door=door, stance=stance, camera=camera, seed=scenario.seed)
 
 
-def _lever_corners(world: object) -> np.ndarray:
+def lever_corners(world: object) -> np.ndarray:
     """The 8 corners (odom) of the lever bar, from the door's geometry (evaluation only)."""
     from door_sim_bridge.world import DoorPart
     from door_sim_bridge.world.door import LEVER_SECTION

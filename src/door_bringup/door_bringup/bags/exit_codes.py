@@ -3,7 +3,7 @@
 | code | meaning |
 |---|---|
 | 0 | done |
-| 2 | bad arguments (``--rate 0``, an unknown option or storage) |
+| 2 | bad arguments (``--rate 0``, an unknown option or storage, zstd without mcap) |
 | 3 | no bag at the path |
 | 4 | metadata.yaml unreadable: not YAML, missing keys, a listed storage file missing |
 | 5 | a storage file is truncated or corrupt (.db3 or .mcap) |

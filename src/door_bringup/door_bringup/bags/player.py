@@ -3,11 +3,13 @@
     bag_play BAG [--rate 2.0] [--clock] [--topics /a /b] [--wait-for-subscribers 5]
 
 Messages are published as the serialized CDR bytes stored in the bag (no decode/encode),
-with the contract's QoS for the graph's own topics and reliable depth-100 otherwise; each is
-first checked to deserialize as its type, and one that does not is reported, skipped and
-counted. ``--clock`` publishes /clock with the bag's time before each message, so nodes
-running with ``use_sim_time`` replay exactly. Failures end with one line and the exit code
-of :mod:`door_bringup.bags.exit_codes` (no traceback).
+with the QoS the bag recorded for each topic (transient-local topics stay transient local,
+:mod:`door_bringup.bags.qos`); topics recorded without QoS get the contract's QoS for the
+graph's own topics and reliable depth-100 otherwise. Each message is first checked to
+deserialize as its type, and one that does not is reported, skipped and counted.
+``--clock`` publishes /clock with the bag's time before each message, so nodes running
+with ``use_sim_time`` replay exactly. Failures end with one line and the exit code of
+:mod:`door_bringup.bags.exit_codes` (no traceback).
 """
 
 from __future__ import annotations
@@ -27,7 +29,8 @@ from rclpy.serialization import deserialize_message
 from rosgraph_msgs.msg import Clock
 
 from door_bringup.bags.exit_codes import BagExit, exit_code_for
-from door_bringup.bags.storage import BagError, BagMessage, read_messages
+from door_bringup.bags.qos import playback_profile
+from door_bringup.bags.storage import BagError, BagMessage, read_messages, recorded_qos
 from door_contract.network import keep_discovery_local
 from door_contract.stamps import to_time_msg
 from door_contract.topics import Topics, TopicSpec, interface_class
@@ -70,7 +73,8 @@ def qos_for(topic: str) -> QoSProfile:
 
 
 class BagPlayer(Node):
-    def __init__(self, messages: list[BagMessage], options: PlaybackOptions) -> None:
+    def __init__(self, messages: list[BagMessage], options: PlaybackOptions,
+                 offers: dict | None = None) -> None:
         super().__init__("bag_player")
         self.messages, self.options = messages, options
         self.published = self.skipped = 0
@@ -79,7 +83,8 @@ class BagPlayer(Node):
             try:
                 self.classes_by_topic[topic] = interface_class(type_name)
                 self.publishers_by_topic[topic] = self.create_publisher(
-                    self.classes_by_topic[topic], topic, qos_for(topic))
+                    self.classes_by_topic[topic], topic,
+                    playback_profile((offers or {}).get(topic, []), qos_for(topic)))
             except (ImportError, AttributeError, ValueError):
                 self.get_logger().warning(f"skipping {topic}: message type {type_name} is not installed")
         self.clock_publisher = self.create_publisher(Clock, Topics.CLOCK.name, Topics.CLOCK.qos.to_profile()) \
@@ -136,19 +141,21 @@ def main(argv: list[str] | None = None) -> int:
         options = PlaybackOptions(args.rate, args.clock, tuple(args.topics) if args.topics else None,
                                   args.wait_for_subscribers)
         messages = list(read_messages(args.bag, options.topics))
+        offers = recorded_qos(args.bag) if args.bag.is_dir() else {}
     except PlaybackOptionsError as error:
         print(f"bag_play: {error}", file=sys.stderr)
         return BagExit.USAGE
     except BagError as error:
         print(f"bag_play: {error}", file=sys.stderr)
         return exit_code_for(error)
-    return _play(messages, options, args.bag, ros_args)
+    return _play(messages, options, args.bag, ros_args, offers)
 
 
-def _play(messages: list[BagMessage], options: PlaybackOptions, bag: Path, ros_args: list[str]) -> int:
+def _play(messages: list[BagMessage], options: PlaybackOptions, bag: Path, ros_args: list[str],
+          offers: dict | None = None) -> int:
     keep_discovery_local()
     rclpy.init(args=ros_args)
-    player = BagPlayer(messages, options)
+    player = BagPlayer(messages, options, offers)
     try:
         count = player.play()
         skipped = f"; skipped {player.skipped} that did not deserialize" if player.skipped else ""

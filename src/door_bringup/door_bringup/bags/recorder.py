@@ -1,11 +1,15 @@
 """``bag_record``: record topics into a rosbag2 bag (like ``ros2 bag record``).
 
-    bag_record OUTPUT [--storage sqlite3|mcap] [--topics /a /b]   (default: every topic)
+    bag_record OUTPUT [--storage sqlite3|mcap] [--compression none|zstd] [--topics /a /b]
+                                                                   (default: every topic)
 
 Subscribes with raw (serialized) callbacks, so messages are stored byte-identical; new
-topics are picked up while recording. Ctrl-C / SIGTERM closes the bag cleanly. An output
-that exists or cannot be created ends with one line and exit code 7
-(:mod:`door_bringup.bags.exit_codes`).
+topics are picked up while recording as soon as a publisher offers them (as ``ros2 bag record``
+does), each with the QoS its publishers offer (stored in the bag, so a player restores
+transient-local topics; :mod:`door_bringup.bags.qos`). Ctrl-C / SIGTERM closes the bag
+cleanly. An output that exists or cannot be created ends with one line and exit code 7
+(:mod:`door_bringup.bags.exit_codes`); ``--compression zstd`` without ``--storage mcap`` is a
+usage error (2).
 """
 
 from __future__ import annotations
@@ -18,9 +22,11 @@ from rclpy.node import Node
 
 from door_bringup.bags.player import qos_for
 from door_bringup.bags.exit_codes import exit_code_for
-from door_bringup.bags.storage import BagError, BagWriter, StorageFormat
+from door_bringup.bags.qos import offered_qos
+from door_bringup.bags.storage import BagError, BagWriter, Compression, StorageFormat
 from door_contract.converters.diagnostics import Health
 from door_contract.node_support import Heartbeat, run_node
+from door_contract.qos import matching_subscription
 from door_contract.topics import interface_class
 
 
@@ -45,8 +51,13 @@ class BagRecorder(Node):
                 msg_type = interface_class(types[0])
             except (ImportError, AttributeError, ValueError):
                 continue
+            offered = [info.qos_profile for info in self.get_publishers_info_by_topic(topic)]
+            if not offered:
+                continue  # known only from a subscriber so far: recorded once a publisher offers its QoS
+            self.writer.add_topic(topic, types[0], [offered_qos(profile) for profile in offered])
             self.subscriptions_by_topic[topic] = self.create_subscription(
-                msg_type, topic, self._writer_for(topic, types[0]), qos_for(topic), raw=True)
+                msg_type, topic, self._writer_for(topic, types[0]), matching_subscription(offered, qos_for(topic)),
+                raw=True)
 
     def _writer_for(self, topic: str, type_name: str):
         def write(data: bytes) -> None:
@@ -65,10 +76,14 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description="Record topics to a rosbag2 bag.")
     parser.add_argument("output", type=Path)
     parser.add_argument("--storage", choices=[s.value for s in StorageFormat], default="sqlite3")
+    parser.add_argument("--compression", choices=[c.value for c in Compression], default="none",
+                        help="zstd: compressed mcap chunks (mcap only)")
     parser.add_argument("--topics", nargs="+", default=None)
     args, ros_args = parser.parse_known_args(argv)
+    if args.compression != "none" and args.storage != "mcap":
+        parser.error("--compression zstd needs --storage mcap")
     try:  # created before the node, so a bad output is one line and exit code 7, not a traceback
-        writer = BagWriter(args.output, StorageFormat(args.storage))
+        writer = BagWriter(args.output, StorageFormat(args.storage), Compression(args.compression))
     except BagError as error:
         print(f"bag_record: {error}", file=sys.stderr)
         return exit_code_for(error)

@@ -4,7 +4,10 @@ Reading goes to the storage file itself — the sqlite ``topics``/``messages`` t
 MCAP channels — instead of matching the metadata's connections against the storage's:
 ``rosbags``' AnyReader and Reader yield **zero messages, silently**, for real
 ``ros2/rosbag2`` bags whose metadata QoS and topic ids differ from the storage file's
-(ENVIRONMENT.md). Writing uses ``rosbags``' Writer (metadata version 9, as Jazzy writes).
+(ENVIRONMENT.md). Writing uses ``rosbags``' Writer (metadata version 9, as Jazzy writes), with
+each topic's offered QoS profiles (what ``ros2 bag play`` restores: a transient-local topic
+is replayed transient local), ``ros_distro: jazzy``, and optional zstd chunk compression for
+mcap (what rosbag2's mcap plugin does with a zstd storage preset; readers decompress it).
 """
 
 from __future__ import annotations
@@ -17,9 +20,14 @@ from enum import Enum
 from pathlib import Path
 
 import yaml
-from rosbags.rosbag2 import StoragePlugin, Writer, WriterError
+from rosbags.interfaces import Qos
+from rosbags.rosbag2 import ReaderError, StoragePlugin, Writer, WriterError
+from rosbags.rosbag2.enums import CompressionFormat, CompressionMode
+from rosbags.rosbag2.metadata import parse_qos
 from rosbags.rosbag2.storage_mcap import McapReader
 from rosbags.typesys import Stores, get_typestore
+
+ROS_DISTRO = "jazzy"
 
 
 class BagError(RuntimeError):
@@ -47,6 +55,11 @@ class StorageFormat(str, Enum):
     MCAP = "mcap"
 
 
+class Compression(str, Enum):
+    NONE = "none"
+    ZSTD = "zstd"  # mcap chunks; Foxglove and rosbag2 read them as they are
+
+
 @dataclass(frozen=True)
 class BagMessage:
     topic: str
@@ -62,19 +75,27 @@ class BagTopic:
     message_count: int
 
 
-def _storage_files(bag: Path) -> list[Path]:
+def _bag_information(bag: Path) -> dict:
     metadata = bag / "metadata.yaml"
-    if bag.is_file():
-        return [bag]
     if not metadata.is_file():
         raise BagNotFoundError(f"{bag} is neither a bag folder with metadata.yaml nor a .db3/.mcap file")
     try:
-        info = yaml.safe_load(metadata.read_text())["rosbag2_bagfile_information"]
-        files = [bag / str(name) for name in info["relative_file_paths"]]
+        return dict(yaml.safe_load(metadata.read_text())["rosbag2_bagfile_information"])
     except yaml.YAMLError as error:
         raise BagMetadataError(f"{metadata} is not YAML ({str(error).splitlines()[0]})") from None
+    except (KeyError, TypeError, ValueError) as error:
+        raise BagMetadataError(f"{metadata} lacks rosbag2_bagfile_information "
+                               f"({type(error).__name__}: {error})") from None
+
+
+def _storage_files(bag: Path) -> list[Path]:
+    if bag.is_file():
+        return [bag]
+    info = _bag_information(bag)
+    try:
+        files = [bag / str(name) for name in info["relative_file_paths"]]
     except (KeyError, TypeError) as error:
-        raise BagMetadataError(f"{metadata} lacks rosbag2_bagfile_information.relative_file_paths "
+        raise BagMetadataError(f"{bag / 'metadata.yaml'} lacks rosbag2_bagfile_information.relative_file_paths "
                                f"({type(error).__name__}: {error})") from None
     for path in files:
         if not path.is_file():
@@ -82,13 +103,29 @@ def _storage_files(bag: Path) -> list[Path]:
     return files
 
 
-def _sqlite_messages(path: Path) -> Iterator[BagMessage]:
+def recorded_qos(bag: Path | str) -> dict[str, list[Qos]]:
+    """Each topic's offered QoS profiles from ``metadata.yaml`` (both the YAML-string form of
+    metadata ≤ 8 and the list of version 9); topics recorded without any map to []."""
+    topics = _bag_information(Path(bag)).get("topics_with_message_count") or []
+    try:
+        return {entry["topic_metadata"]["name"]: parse_qos(entry["topic_metadata"].get("offered_qos_profiles") or [])
+                for entry in topics}
+    except (KeyError, TypeError, ValueError, AttributeError, ReaderError) as error:
+        raise BagMetadataError(f"{bag}/metadata.yaml: unreadable topics_with_message_count "
+                               f"({type(error).__name__}: {(str(error).splitlines() or [''])[0]})") from None
+
+
+def _sqlite_messages(path: Path, topics: set[str] | None) -> Iterator[BagMessage]:
     # immutable=1: a read-only file system and no -shm/-wal side files next to the bag
     connection = sqlite3.connect(f"file:{path}?immutable=1", uri=True)
+    where, names = "", ()
+    if topics is not None:  # filtered in SQL: a run's bag holds ~400 MB of images
+        names = tuple(sorted(topics))
+        where = f"WHERE topics.name IN ({', '.join('?' * len(names))}) "
     try:
         rows = connection.execute(
             "SELECT topics.name, topics.type, messages.timestamp, messages.data FROM messages "
-            "JOIN topics ON messages.topic_id = topics.id ORDER BY messages.timestamp, messages.id")
+            f"JOIN topics ON messages.topic_id = topics.id {where}ORDER BY messages.timestamp, messages.id", names)
         for name, type_name, timestamp, data in rows:
             yield BagMessage(name, type_name, int(timestamp), bytes(data))
     except sqlite3.Error as error:
@@ -97,12 +134,13 @@ def _sqlite_messages(path: Path) -> Iterator[BagMessage]:
         connection.close()
 
 
-def _mcap_messages(path: Path) -> Iterator[BagMessage]:
+def _mcap_messages(path: Path, topics: set[str] | None) -> Iterator[BagMessage]:
     reader, opened = McapReader(path), False
     try:
         reader.open()
         opened = True
-        for connection, timestamp, data in reader.messages(reader.connections):
+        connections = [c for c in reader.connections if topics is None or c.topic in topics]
+        for connection, timestamp, data in reader.messages(connections) if connections else ():
             yield BagMessage(connection.topic, connection.msgtype, int(timestamp), bytes(data))
     except Exception as error:  # rosbags raises ReaderError, struct and Unicode errors on bad records
         raise BagStorageError(f"{path.name} is not a readable mcap file ({type(error).__name__}: {error})") from None
@@ -117,9 +155,9 @@ def read_messages(bag: Path | str, topics: Iterable[str] | None = None) -> Itera
     streams = []
     for path in _storage_files(Path(bag)):
         if path.suffix == ".db3":
-            streams.append(_sqlite_messages(path))
+            streams.append(_sqlite_messages(path, wanted))
         elif path.suffix == ".mcap":
-            streams.append(_mcap_messages(path))
+            streams.append(_mcap_messages(path, wanted))
         else:
             raise BagMetadataError(f"unknown storage file {path.name} (expected .db3 or .mcap)")
     for message in heapq.merge(*streams, key=lambda m: m.timestamp_ns):
@@ -136,39 +174,60 @@ def list_topics(bag: Path | str) -> list[BagTopic]:
 
 
 class BagWriter:
-    """Writes serialized messages to a new rosbag2 bag (metadata version 9)."""
+    """Writes serialized messages to a new rosbag2 bag (metadata version 9, ``ros_distro: jazzy``)."""
 
-    def __init__(self, path: Path | str, storage: StorageFormat = StorageFormat.SQLITE3) -> None:
+    def __init__(self, path: Path | str, storage: StorageFormat = StorageFormat.SQLITE3,
+                 compression: Compression = Compression.NONE) -> None:
         plugin = StoragePlugin.SQLITE3 if storage is StorageFormat.SQLITE3 else StoragePlugin.MCAP
-        if Path(path).exists():
+        self.path = Path(path)
+        if self.path.exists():
             raise BagWriteError(f"{path} exists already: choose a new output folder")
-        self._writer = Writer(Path(path), version=9, storage_plugin=plugin)
+        if compression is Compression.ZSTD and storage is not StorageFormat.MCAP:
+            raise BagWriteError("zstd compression is for mcap bags (compressed chunks); use --storage mcap")
+        self._writer = Writer(self.path, version=9, storage_plugin=plugin)
+        if compression is Compression.ZSTD:
+            self._writer.set_compression(CompressionMode.STORAGE, CompressionFormat.ZSTD)
         self._typestore = get_typestore(Stores.ROS2_JAZZY)
         self._connections: dict[str, object] = {}
         try:
             self._writer.open()
         except (OSError, WriterError) as error:
             raise BagWriteError(f"cannot create {path} ({error})") from None
+        self._say_jazzy_in_storage_metadata()
+
+    def _say_jazzy_in_storage_metadata(self) -> None:
+        """rosbags writes ``ros_distro: rosbags``; the copy of metadata.yaml that the storage
+        file keeps (sqlite table, mcap record) gets Jazzy's, as rosbag2 itself writes."""
+        storage = self._writer.storage
+        close = storage.close
+        storage.close = lambda version, metadata: close(version, _jazzy(metadata))
+
+    def add_topic(self, topic: str, type_name: str, offered_qos: Iterable[Qos] = ()) -> None:
+        """Declare ``topic`` with the QoS profiles its publishers offer (before its first message)."""
+        if topic in self._connections:
+            raise BagWriteError(f"topic {topic} is already in the bag")
+        kwargs = {"typestore": self._typestore} if type_name in self._typestore.fielddefs else {
+            "msgdef": "", "rihs01": ""}
+        self._connections[topic] = self._writer.add_connection(
+            topic, type_name, offered_qos_profiles=tuple(offered_qos), **kwargs)
 
     def write(self, topic: str, type_name: str, timestamp_ns: int, data: bytes) -> None:
-        connection = self._connections.get(topic)
-        if connection is None:
-            connection = self._add_connection(topic, type_name)
-        self._writer.write(connection, int(timestamp_ns), data)
-
-    def _add_connection(self, topic: str, type_name: str):
-        if type_name in self._typestore.fielddefs:
-            connection = self._writer.add_connection(topic, type_name, typestore=self._typestore)
-        else:
-            connection = self._writer.add_connection(topic, type_name, msgdef="", rihs01="")
-        self._connections[topic] = connection
-        return connection
+        """Append a message; a topic not declared yet is added without QoS profiles."""
+        if topic not in self._connections:
+            self.add_topic(topic, type_name)
+        self._writer.write(self._connections[topic], int(timestamp_ns), data)
 
     def close(self) -> None:
         self._writer.close()
+        metadata = self.path / "metadata.yaml"
+        metadata.write_text(_jazzy(metadata.read_text()))
 
     def __enter__(self) -> BagWriter:
         return self
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+def _jazzy(metadata_text: str) -> str:
+    return metadata_text.replace("ros_distro: rosbags", f"ros_distro: {ROS_DISTRO}")

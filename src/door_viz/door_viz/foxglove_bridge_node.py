@@ -1,0 +1,163 @@
+"""ROS 2 node ``/foxglove_bridge``: the graph, live, on a Foxglove WebSocket (foxglove-sdk).
+
+Every ROS topic is advertised as a channel with its ROS 2 schema (``ros2msg``) and CDR
+messages; a ROS subscription is made only while a client subscribes (QoS matched to the
+publishers, so latched topics arrive at once). Foxglove clients may publish JSON
+``std_msgs/String`` messages on the allowed topics (``/door_task/operator``: approve from a
+Publish or button panel); the bridge republishes them on ROS. The URDF's ``package://``
+meshes are served to the 3-D panel. Bound to 127.0.0.1 unless ``address`` says otherwise.
+The ROS-free parts are in :mod:`door_viz.foxglove_core`.
+"""
+
+from __future__ import annotations
+
+import foxglove
+from foxglove.websocket import Capability, StatusLevel
+from rclpy.clock import Clock, ClockType
+from rclpy.node import Node
+from rclpy.qos import QoSProfile
+from std_msgs.msg import String
+
+from door_contract.converters.diagnostics import Health
+from door_contract.errors import ParameterRangeError
+from door_contract.node_support import Heartbeat, declare_parameters, run_node
+from door_contract.qos import matching_subscription
+from door_contract.topics import Topics, interface_class
+from door_robot.errors import RobotModelError
+from door_robot.profile import load_profile
+from door_viz.foxglove_core import (JSON_ENCODING, ClientCommandError, EventKind, SchemaLibrary, ServerEvent,
+                                    ServerEvents, client_channel_refusal, client_string, mesh_asset)
+from door_viz.parameters import FOXGLOVE_NODE, FOXGLOVE_PARAMETERS
+
+EVENT_PERIOD_S = 0.02
+
+
+def contract_profile(topic: str) -> QoSProfile:
+    """The contract's QoS of ``topic``; reliable, volatile, depth 10 for others."""
+    spec = next((t for t in Topics.all() if t.name == topic), None)
+    return spec.qos.to_profile() if spec is not None else QoSProfile(depth=10)
+
+
+class FoxgloveBridgeNode(Node):
+    def __init__(self) -> None:
+        super().__init__(FOXGLOVE_NODE)
+        p = declare_parameters(self, FOXGLOVE_PARAMETERS)
+        try:
+            urdf_path = load_profile(p["robot_profile"]).urdf_path
+        except RobotModelError as error:
+            raise ParameterRangeError(f"parameter 'robot_profile': {error}") from None
+        self.schemas, self.events, self.sdk_context = SchemaLibrary(), ServerEvents(), foxglove.Context()
+        self.channels: dict[str, foxglove.Channel | None] = {}  # None: a type without schema
+        self.topic_of_channel: dict[int, str] = {}
+        self.watchers: dict[str, set[int]] = {}  # topic -> clients subscribed to it
+        self.ros_subscriptions = {}
+        self.client_channels: dict[tuple[int, int], str] = {}  # (client, its channel) -> topic
+        # one publisher per allowed topic, made now, so subscribers have matched it before a
+        # client's first message (a publisher made on demand would lose that message)
+        self.client_publishers = {topic: self.create_publisher(String, topic, contract_profile(topic))
+                                  for topic in p["client_topics"]}
+        self.forwarded = 0
+        try:
+            self.server = foxglove.start_server(
+                name="door_traversal", host=p["address"], port=p["port"], capabilities=[Capability.ClientPublish],
+                supported_encodings=[JSON_ENCODING], server_listener=self.events, context=self.sdk_context,
+                asset_handler=lambda uri: mesh_asset(uri, urdf_path))
+        except Exception as error:  # the SDK raises RuntimeError subclasses for bind failures
+            raise ParameterRangeError(f"parameter 'address'/'port' = {p['address']}:{p['port']}: "
+                                      f"cannot serve ({error})") from None
+        self.heartbeat = Heartbeat(self)
+        steady = Clock(clock_type=ClockType.STEADY_TIME)
+        self.create_timer(p["discovery_period"], self._discover, clock=steady)
+        self.create_timer(EVENT_PERIOD_S, self._handle_events, clock=steady)
+        self._discover()
+        self.get_logger().info(f"Foxglove: open ws://{p['address']}:{self.server.port} "
+                               f"(clients may publish on {', '.join(p['client_topics'])})")
+
+    # ------------------------------------------------------------------ ROS → Foxglove
+    def _discover(self) -> None:
+        for topic, types in self.get_topic_names_and_types():
+            if topic in self.channels or not types:
+                continue
+            schema = self.schemas.schema(types[0])
+            if schema is None:
+                self.channels[topic] = None  # unknown type: not forwarded (said once)
+                self.get_logger().warning(f"{topic}: no schema for {types[0]}, not forwarded")
+                continue
+            channel = foxglove.Channel(topic, message_encoding="cdr", context=self.sdk_context,
+                                       schema=foxglove.Schema(name=types[0], encoding="ros2msg", data=schema))
+            self.channels[topic] = channel
+            self.topic_of_channel[channel.id()] = topic
+        self.heartbeat.update(Health.OK, "serving", channels=len(self.topic_of_channel), forwarded=self.forwarded,
+                              watched=len(self.ros_subscriptions))
+
+    def _watch(self, event: ServerEvent) -> None:
+        topic = self.topic_of_channel.get(event.channel)
+        if topic is None:
+            return
+        watchers = self.watchers.setdefault(topic, set())
+        if event.kind is EventKind.SUBSCRIBE:
+            watchers.add(event.client)
+        else:
+            watchers.discard(event.client)
+        if watchers and topic not in self.ros_subscriptions:
+            offered = [info.qos_profile for info in self.get_publishers_info_by_topic(topic)]
+            types = dict(self.get_topic_names_and_types()).get(topic) or [self.channels[topic].schema_name()]
+            self.ros_subscriptions[topic] = self.create_subscription(
+                interface_class(types[0]), topic, lambda data, c=self.channels[topic]: self._forward(c, data),
+                matching_subscription(offered, contract_profile(topic)), raw=True)
+        elif not watchers and topic in self.ros_subscriptions:
+            self.destroy_subscription(self.ros_subscriptions.pop(topic))
+
+    def _forward(self, channel: foxglove.Channel, data: bytes) -> None:
+        channel.log(bytes(data), log_time=self.get_clock().now().nanoseconds)
+        self.forwarded += 1
+
+    # ------------------------------------------------------------------ Foxglove → ROS
+    def _handle_events(self) -> None:
+        for event in self.events.drain():
+            if event.kind in (EventKind.SUBSCRIBE, EventKind.UNSUBSCRIBE):
+                self._watch(event)
+            elif event.kind is EventKind.CLIENT_ADVERTISE:
+                self._advertised(event)
+            elif event.kind is EventKind.CLIENT_UNADVERTISE:
+                self.client_channels.pop((event.client, event.channel), None)
+            else:
+                self._client_message(event)
+
+    def _advertised(self, event: ServerEvent) -> None:
+        refusal = client_channel_refusal(event.topic, event.schema_name, event.encoding,
+                                         tuple(self.client_publishers))
+        if refusal is not None:
+            self._refuse(f"client {event.client}: {refusal}")
+            return
+        self.client_channels[(event.client, event.channel)] = event.topic
+
+    def _client_message(self, event: ServerEvent) -> None:
+        topic = self.client_channels.get((event.client, event.channel))
+        if topic is None:
+            self._refuse(f"client {event.client}: message on channel {event.channel}, which was refused "
+                         "or never advertised")
+            return
+        try:
+            text = client_string(JSON_ENCODING, event.data)
+        except ClientCommandError as error:
+            self._refuse(f"client {event.client} on {topic}: {error}")
+            return
+        self.client_publishers[topic].publish(String(data=text))
+        self.get_logger().info(f"Foxglove client {event.client} on {topic}: {text!r}")
+
+    def _refuse(self, reason: str) -> None:
+        self.get_logger().warning(reason)
+        self.server.publish_status(reason, StatusLevel.Warning)
+
+    def destroy_node(self) -> None:
+        self.server.stop()
+        super().destroy_node()
+
+
+def main(args: list[str] | None = None) -> int:
+    return run_node(FoxgloveBridgeNode, args)
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
