@@ -1,6 +1,6 @@
 """``door_graph``: run the node graph here, where ``ros2 launch`` is not available.
 
-``door_graph --check`` starts the five nodes as separate processes, waits (with a deadline)
+``door_graph --check`` starts the graph's nodes as separate processes, waits (with a deadline)
 until each appears in the ROS graph, then stops them with SIGINT and reports their exit
 codes — the smoke test of the set-up. On a real ROS install use ``launch/door_task.launch.py``.
 """
