@@ -3,7 +3,7 @@
 import numpy as np
 
 from door_bringup.door_task import TaskOptions
-from door_bringup.monte_carlo import overhead_line, sample_trial, summary
+from door_bringup.monte_carlo import falls_line, overhead_line, sample_trial, summary
 
 
 def _report(opening: str, done: bool, detection_s: float, planning_s: float) -> dict:
@@ -36,3 +36,13 @@ def test_summary_counts_each_opening_and_names_the_failures():
     assert "push doors (paper: 91 % overall)" in text and "pull doors (paper: 82 % overall)" in text
     assert "All doors: 1/2 (50 %)" in text
     assert "- trial 1: WALK_TO_DOOR: planning failed" in text
+
+
+def test_falls_are_counted_per_phase():
+    fell = _report("push", False, 1.0, 0.5)
+    fell["failure_reason"] = "WALK_THROUGH: the robot fell: base tilted 35° (more than 34°)"
+    fell_opening = dict(fell, failure_reason="OPEN_DOOR/PUSH: the robot fell: base 0.4 m high")
+    reports = [fell, fell_opening, dict(fell), _report("pull", False, 1.0, 0.5), _report("push", True, 1.0, 0.5)]
+    assert falls_line(reports) == "Falls: 3/5 runs (OPEN_DOOR 1, WALK_THROUGH 2)"
+    assert falls_line([_report("push", True, 1.0, 0.5)]) == "Falls: 0/1 runs (none)"
+    assert "Falls: 3/5" in summary(reports)

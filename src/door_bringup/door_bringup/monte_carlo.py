@@ -15,13 +15,14 @@ import json
 import statistics
 import sys
 import time
+from collections import Counter
 from dataclasses import asdict, replace
 from datetime import datetime, timezone
 
 import numpy as np
 
 from door_bringup.door_task import TaskOptions, run_task
-from door_bringup.table_one import format_table, phase_rows
+from door_bringup.table_one import format_table, phase_of, phase_rows
 from door_bringup.workspace import Workspace, repository_root
 
 
@@ -88,8 +89,17 @@ def summary(reports: list[dict]) -> str:
     failures = [f"- trial {i}: {r['failure_reason']}" for i, r in enumerate(reports) if r["final_state"] != "DONE"]
     return "\n\n".join(sections + [f"**All doors: {ok}/{len(reports)} "
                                    f"({100.0 * ok / max(len(reports), 1):.0f} %); target ≥ 98 %**",
-                                   overhead_line(reports),
+                                   overhead_line(reports), falls_line(reports),
                                    "Failures:\n" + ("\n".join(failures) or "- none")]) + "\n"
+
+
+def falls_line(reports: list[dict]) -> str:
+    """Runs that ended with the robot fallen, per phase (the FSM names the state in which the
+    execution reported ``fell``: ``"<STATE>: the robot fell: ..."``)."""
+    phases = Counter(phase_of(r["failure_reason"].split(":", 1)[0]) for r in reports
+                     if r["final_state"] != "DONE" and "the robot fell" in r["failure_reason"])
+    counted = ", ".join(f"{phase} {count}" for phase, count in sorted(phases.items())) or "none"
+    return f"Falls: {sum(phases.values())}/{len(reports)} runs ({counted})"
 
 
 def overhead_line(reports: list[dict]) -> str:
