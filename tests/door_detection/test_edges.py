@@ -64,3 +64,22 @@ def test_contrast_limited_equalisation_keeps_a_small_step_next_to_a_dominant_gre
     limited = equalise_luma(luma, DetectionOptions().histogram_clip_limit)
     assert int(limited[0, 150]) - int(limited[0, 0]) >= 10
     assert int(limited[0, 0]) - int(limited[0, 200]) >= 20
+
+
+def test_a_jamb_is_not_measured_where_the_rays_miss_the_plane_and_the_strip_stays_in_the_image():
+    """Seen edge-on, the edge's rays meet the plane behind the camera, or so far away that the
+    strip would have been millions of pixels wide (the detector once ran out of memory)."""
+    from door_contract.converters.camera_info import CameraIntrinsics
+    from door_detection.jambs import _jamb_width
+    from door_detection.plane import Plane
+
+    intrinsics = CameraIntrinsics(640, 480, 500.0, 500.0, 320.0, 240.0)
+    depth = np.full((480, 640), 2.0)
+    rows = np.linspace(100.0, 300.0, 50)
+    axis = np.array([1.0, 0.0, 0.0])
+    behind = np.column_stack([np.zeros(50), np.zeros(50), np.full(50, -1.0)])
+    plane = Plane(np.array([0.0, 0.0, -1.0]), np.array([0.0, 0.0, 1.0]))
+    assert _jamb_width(behind, axis, rows, np.full(50, 320.0), 1, plane, depth, intrinsics, 0.1) == 0.0
+    grazing = np.column_stack([np.zeros(50), np.zeros(50), np.full(50, 0.1 + 1e-7)])
+    plane = Plane(np.array([0.0, 0.0, 2.0]), np.array([0.0, 0.0, 1.0]))
+    assert _jamb_width(grazing, axis, rows, np.full(50, 320.0), 1, plane, depth, intrinsics, 0.1) == 0.0

@@ -39,6 +39,8 @@ JAMB_MIN_STEP = 0.004
 """Smallest stand-off of a jamb above the leaf (m)."""
 JAMB_MIN_SCORE = 5.0
 """Smallest step, in standard errors."""
+JAMB_MIN_DEPTH = 0.1
+"""m: an edge nearer the camera than this is not measured."""
 JAMB_MAX_ROWS = 600
 """Rows sampled along each edge, at most: every row (at 3.5 m and σ = 4 cm, a 1 cm step over
 a 6.7 cm jamb is ~7 standard errors over 260 rows, < 1 over 40)."""
@@ -65,8 +67,14 @@ def trim_jambs(lines: VerticalLines, candidate: DoorCandidate, plane: Plane, dep
 
 def _jamb_width(edge: np.ndarray, axis: np.ndarray, rows: np.ndarray, edge_x: np.ndarray, inward: int,
                 plane: Plane, depth: np.ndarray, intrinsics: CameraIntrinsics, frame_width: float) -> float:
-    """Width (m) of the jamb beside the edge (see the module docstring), 0 when there is none."""
-    span = np.ceil(frame_width * intrinsics.fx / np.maximum(edge[:, 2], 1e-6)).astype(int)
+    """Width (m) of the jamb beside the edge (see the module docstring), 0 when there is none.
+
+    An edge whose rays meet the plane behind or at the camera (a plane seen edge-on) has no
+    jamb to measure; the strip searched is at most the image's width (unbounded, a ray that
+    grazed the plane asked for a 62-million-pixel strip and the detector ran out of memory)."""
+    if not np.all(edge[:, 2] > JAMB_MIN_DEPTH):
+        return 0.0
+    span = np.minimum(np.ceil(frame_width * intrinsics.fx / edge[:, 2]), depth.shape[1]).astype(int)
     offsets = np.arange(int(span.max()) + 1)[None, :]
     cols = np.rint(edge_x)[:, None] + inward * offsets
     which = np.broadcast_to(np.arange(rows.size)[:, None], cols.shape)     # the sampled row of each pixel
