@@ -44,19 +44,23 @@ class BalanceLoop:
     def _door_forces(self) -> list[tuple[np.ndarray, np.ndarray]]:
         """Forces on the robot the stabiliser may lean against: every link's contacts with the
         door's body but the hands'; a hand's wrist sensor (at the TCP) while it holds the
-        handle, or while walking (the blocking hand on the leaf).
+        handle, or while walking with the hand on the door (the blocking hand on the leaf, the
+        fingers pushing a leaf open).
 
         Not a hand pressing a latched door while standing: leaning against it presses the
         hand harder, the force grows, the lean with it (seen: 118 N and a 10 cm lean off a
-        mis-placed approach). The CoP feedback still catches what that leaves out.
+        mis-placed approach). The CoP feedback still catches what that leaves out. Nor a hand
+        in the air while walking: its sensor then reads the hand's inertia (20-40 N at each
+        landing), and leaning against that tipped the robot forward past the doorway.
         """
         hands = {side: self._robot.hand_links(side) for side in self._robot.profile.arms}
         every_hand = set().union(*hands.values())
-        body = [(force, point) for link, force, point in
-                contact_forces(self._client, self._robot.body, self._door) if link not in every_hand]
+        contacts = contact_forces(self._client, self._robot.body, self._door)
+        body = [(force, point) for link, force, point in contacts if link not in every_hand]
+        touching = {side for side, links in hands.items() if any(link in links for link, _, _ in contacts)}
         gravity, walking = self._config.gravity, self.walking
         return body + [(self._robot.wrist_force(side, gravity), self._robot.tcp_pose(side)[:3, 3])
-                       for side in hands if walking or self._holding(side)]
+                       for side in hands if (walking and side in touching) or self._holding(side)]
 
     def control(self) -> None:
         """Set this step's joint targets (nothing once fallen)."""
