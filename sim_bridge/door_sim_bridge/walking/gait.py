@@ -29,9 +29,11 @@ class GaitOptions:
     """Timing and shape of the walk (SI units)."""
 
     single_support_s: float = 0.6  # s on one foot per step
-    # double support per step, × single_support_s. 0.5, not 0.25: random side-stepping at the
-    # profile's limits fell 4 of 24 times against 9 of 24 (the step is then 0.9 s, not 0.75 s)
-    double_support_ratio: float = 0.5
+    # double support per step, × single_support_s. 1.5 (a 1.5 s step): walking with 30-45 N
+    # pressed sideways at the shoulder and then let go (a leaf sliding along the body, a
+    # blocking hand leaving the leaf) fell at 0.5 in 6 of 6 cases and at 1.0 in 2 of 6, and
+    # stood at 1.5 in all: a lean against a force that vanishes mid-step is caught on two feet
+    double_support_ratio: float = 1.5
     start_end_ratio: float = 2.0  # first and last double support, × the double support
     foot_height: float = 0.05  # m, swing-foot apex
     foot_rise_ratio: float = 0.2  # fraction of the swing spent rising and landing vertically
