@@ -25,7 +25,7 @@ from std_srvs.srv import SetBool
 from trajectory_msgs.msg import JointTrajectory
 
 from door_contract.converters.camera_info import intrinsics_to_camera_info
-from door_contract.converters.footsteps import Foot, footsteps_to_path, path_to_footsteps
+from door_contract.converters.footsteps import footsteps_to_path, path_to_footsteps
 from door_contract.converters.image import array_to_image
 from door_contract.converters.joint_state import positions_to_joint_state
 from door_contract.converters.pose import matrix_to_pose, matrix_to_pose_stamped
@@ -37,16 +37,15 @@ from door_contract.node_support import (Heartbeat, as_parameter_error, create_co
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, encode
 from door_contract.stamps import stamp_ns, to_time_msg
 from door_contract.topics import Services, Topics
+from door_contract.vocabulary import DoorOpening, Foot, HingeSide, Side
 from door_robot.meshes import MeshUris
-from door_robot.profile import Side
 from door_robot.errors import RobotModelError
 from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS, NODE_NAME
 from door_sim_bridge.robot_state_publication import RobotStatePublication
-from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, DoorWorld, HingeSide, StanceConfig,
-                                   WindConfig, WorldConfig)
+from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorWorld, StanceConfig, WindConfig, WorldConfig)
 from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT
 
 STEPS_PER_TICK = 4

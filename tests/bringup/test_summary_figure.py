@@ -14,13 +14,14 @@ from door_bringup.bags.storage import BagWriter, StorageFormat
 from door_bringup.progress import ProgressPrinter, TaskProgress, phase_of, progress_line
 from door_bringup.summary_data import handle_position, read_run, signed_margin, support_polygon
 from door_bringup.summary_figure import plot_summary
-from door_contract.converters.footsteps import Foot, FootPlacement, footsteps_to_path
+from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
 from door_contract.converters.joint_state import positions_to_joint_state
-from door_contract.payloads import DoorEstimate, HingeSide, encode
+from door_contract.payloads import DoorEstimate, encode
 from door_contract.stamps import to_time_msg
 from door_contract.topics import Topics
+from door_contract.vocabulary import Foot, HingeSide, Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from door_sim_bridge.world.door import HINGE_JOINT
 
 ESTIMATE = DoorEstimate(0.0, "odom", (0.0, -0.35, 0.95), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,

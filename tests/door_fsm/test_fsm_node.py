@@ -10,8 +10,9 @@ from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import DoorEstimate, HingeSide, TaskReport, decode, encode
+from door_contract.payloads import DoorEstimate, TaskReport, decode, encode
 from door_contract.topics import Topics
+from door_contract.vocabulary import HingeSide
 from ros_helpers import executor_for, spin_until
 
 pytestmark = pytest.mark.ros

@@ -14,10 +14,10 @@ from std_msgs.msg import String
 from door_bringup.graph_spec import GRAPH
 from door_contract.converters.trajectory import msg_to_joint_path
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import (DoorEstimate, HingeSide, MotionRequest, OutcomeStatus, PlanningOutcome,
-                                    decode, encode)
+from door_contract.payloads import (DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, decode, encode)
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Topics
+from door_contract.vocabulary import HingeSide
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_trajopt.library import MotionLibrary

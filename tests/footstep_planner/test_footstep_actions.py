@@ -8,9 +8,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from door_contract.vocabulary import Foot
 from footstep_planner.actions import (CLEARANCE_STEP, CLOSING_STEP, ActionSet, StepAction, cleared_turn,
                                       is_kinematically_valid)
-from footstep_planner.footstep import Foot
 from footstep_planner.geometry import rectangle_corners
 from footstep_planner.obstacles import Obstacle
 from footstep_planner.options import FootstepPlannerOptions
@@ -36,7 +36,7 @@ def test_action_set_has_forward_backward_side_and_turning_steps() -> None:
 def test_every_action_lands_on_its_own_side_within_the_limits(swing: Foot) -> None:
     table = ACTIONS.tables[swing]
     forward, left, yaw = table.foot.T
-    lateral = swing.side_sign * left
+    lateral = swing.sign * left
     assert np.all(forward <= OPTIONS.max_stride + 1e-9)
     assert np.all(forward >= -OPTIONS.max_backward_step - 1e-9)
     assert np.all(lateral >= OPTIONS.min_foot_separation - 1e-9)  # no leg crossing

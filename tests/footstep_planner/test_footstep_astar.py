@@ -7,9 +7,9 @@ from dataclasses import replace
 
 import pytest
 
+from door_contract.vocabulary import DoorOpening, Foot, HingeSide
 from footstep_planner.astar import FootstepPlanner, plan_footsteps
-from footstep_planner.door import DoorOpening, HingeSide
-from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.goals import stand_pose_for_opening, through_door_pose
 from footstep_planner.obstacles import Obstacle
 from footstep_planner.options import FootstepPlannerOptions

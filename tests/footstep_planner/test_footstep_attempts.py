@@ -8,9 +8,9 @@ from dataclasses import replace
 
 import pytest
 
+from door_contract.vocabulary import DoorOpening
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.attempts import MAX_ATTEMPT, options_for_attempt
-from footstep_planner.door import DoorOpening
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.goals import pull_passage_waypoints, stand_pose_for_opening

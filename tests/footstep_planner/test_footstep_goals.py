@@ -8,8 +8,9 @@ import pytest
 
 from dataclasses import replace
 
+from door_contract.vocabulary import DoorOpening, HingeSide
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorOpening, HingeSide, wall_obstacles
+from footstep_planner.door import wall_obstacles
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.footprint import FootprintChecker
 from footstep_planner.footstep import Stance

@@ -8,9 +8,10 @@ import math
 import numpy as np
 import pytest
 
+from door_contract.vocabulary import Foot
 from footstep_planner.actions import ActionSet, StepAction
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.geometry import wrap_angle
 from footstep_planner.heuristic import FootstepHeuristic, is_goal_centre
 from footstep_planner.options import FootstepPlannerOptions

@@ -13,12 +13,12 @@ from contextlib import contextmanager
 
 import pytest
 
+from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorOpening, HingeSide
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.legs import plan_legs
 from footstep_planner.plan import PlanResult
-from footstep_planner.requests import GoalSettings, WalkGoal, options_for_problem, walk_problem
+from footstep_planner.requests import GoalSettings, options_for_problem, walk_problem
 
 from footstep_scenes import door_facing_robot, profile_options
 

@@ -9,8 +9,9 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from door_contract.vocabulary import DoorOpening, HingeSide
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorOpening, HingeSide, wall_obstacles
+from footstep_planner.door import wall_obstacles
 from footstep_planner.footprint import FootprintChecker
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.geometry import wrap_angle

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from footstep_planner.door import DoorOpening
+from door_contract.vocabulary import DoorOpening
 from footstep_planner.geometry import Bounds
 from footstep_planner.reachability import ReachabilityQuery, flood_fill, may_reach
 from footstep_planner.world import World

@@ -19,12 +19,13 @@ from nav_msgs.msg import Path as PathMsg
 from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
-from door_contract.converters.footsteps import Foot, FootPlacement, path_to_footsteps
+from door_contract.converters.footsteps import FootPlacement, path_to_footsteps
 from door_contract.converters.joint_state import joint_state_to_positions
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import DoorEstimate, ExecutionOutcome, HingeSide, PlanningOutcome, decode
+from door_contract.payloads import DoorEstimate, ExecutionOutcome, PlanningOutcome, decode
 from door_contract.qos import SERVICE
 from door_contract.topics import Services, Topics
+from door_contract.vocabulary import Foot, HingeSide
 from ros_helpers import executor_for, spin_until
 
 # Wall at x = 0, the sim robot 3 m in front facing +x; a left-hinged DRC door.

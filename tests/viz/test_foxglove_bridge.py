@@ -16,8 +16,9 @@ from rclpy.serialization import deserialize_message
 from std_msgs.msg import String
 
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import DoorEstimate, HingeSide, encode
+from door_contract.payloads import DoorEstimate, encode
 from door_contract.topics import Topics
+from door_contract.vocabulary import HingeSide
 from door_robot.meshes import resolve_package_uri
 from foxglove_client import FoxgloveClient
 from ros_helpers import executor_for, spin_until

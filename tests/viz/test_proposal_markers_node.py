@@ -17,8 +17,9 @@ from door_contract.converters.trajectory import JointPath, joint_path_to_msg
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import MotionRequest, encode
 from door_contract.topics import Topics
+from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from ros_helpers import executor_for, spin_until
 from test_proposal_shapes import ESTIMATE, STEPS
 

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from enum import Enum
 
 import numpy as np
 from nav_msgs.msg import Path
@@ -21,11 +20,7 @@ from door_contract.geometry import planar_pose, yaw_of
 from door_contract.errors import ShapeError
 from door_contract.frames import Frame
 from door_contract.stamps import Stamp, to_time_msg
-
-
-class Foot(str, Enum):
-    LEFT = "left"
-    RIGHT = "right"
+from door_contract.vocabulary import Foot
 
 
 @dataclass(frozen=True)

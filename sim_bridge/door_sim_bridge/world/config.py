@@ -16,6 +16,7 @@ import math
 from dataclasses import dataclass, field, fields
 from enum import Enum
 
+from door_contract.vocabulary import DoorOpening, HingeSide
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.validation import check_ranges, require as _require
 from door_sim_bridge.walking.gait import GaitOptions
@@ -30,25 +31,6 @@ Direction = tuple[float, float, float]
 DEFAULT_LIGHT_DIRECTION: Direction = (-50.0, 30.0, 100.0)
 """PyBullet TinyRenderer's own light for a z-up world (towards the light, odom axes): passing
 it explicitly renders exactly what the renderer did unasked."""
-
-
-class DoorOpening(str, Enum):
-    """Which way the leaf swings, seen from the robot's starting side (x < 0)."""
-
-    PUSH = "push"  # away from the robot, towards +x
-    PULL = "pull"  # towards the robot, towards -x
-
-
-class HingeSide(str, Enum):
-    """Side of the hinges as seen from the robot facing the door (+x): LEFT is +y."""
-
-    LEFT = "left"
-    RIGHT = "right"
-
-    @property
-    def sign(self) -> float:
-        """+1 when the hinge edge is at +y, -1 at -y."""
-        return 1.0 if self is HingeSide.LEFT else -1.0
 
 
 class RobotMode(str, Enum):

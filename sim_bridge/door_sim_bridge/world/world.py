@@ -30,9 +30,9 @@ from types import TracebackType
 import numpy as np
 import pybullet
 
-from door_contract.converters.footsteps import Foot, FootPlacement
+from door_contract.converters.footsteps import FootPlacement
 from door_robot.locations import cmeel_share_dir
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.world.camera import CameraFrame, HeadCamera, optical_offset
 from door_sim_bridge.world.client import PhysicsClient
@@ -44,6 +44,7 @@ from door_sim_bridge.world.door import DoorGroundTruth, DoorPart, DoorState, Lat
 from door_sim_bridge.world.grasp import GraspController, GraspResult
 from door_sim_bridge.world.robot import JointLimit, JointStates, SimRobot
 from door_contract.geometry import planar_pose, yaw_of
+from door_contract.vocabulary import Foot, Side
 from door_sim_bridge.world.transforms import invert, is_rigid
 
 
@@ -347,8 +348,7 @@ class DoorWorld:
         placements = {}
         for side, link in self.profile.feet.items():
             pose = self.robot.link_pose(link)
-            foot = Foot(side.value)
-            placements[foot] = FootPlacement(foot, float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
+            placements[side] = FootPlacement(side, float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
         return placements
 
     def _feet_midpoint(self) -> np.ndarray:

@@ -33,8 +33,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from door_contract.vocabulary import Side
 from door_detection.automatic import detect_automatic
-from door_detection.estimate import DetectionResult, Side
+from door_detection.estimate import DetectionResult
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar

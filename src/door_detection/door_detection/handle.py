@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from door_detection.estimate import Side
+from door_contract.vocabulary import Side
 from door_detection.options import DetectionOptions
 
 
@@ -176,7 +176,7 @@ def _search(rgb: np.ndarray, corners: np.ndarray, options: DetectionOptions, hin
     stats = colour_stats(pixels[inner][:: max(int(inner.sum()) // 20000, 1)])
     not_door = ~stats.matches(pixels, options)
     door_area = float(inner.sum())
-    sides = [hinge_side.opposite] if hinge_side is not None else [Side.LEFT, Side.RIGHT]
+    sides = [hinge_side.other] if hinge_side is not None else [Side.LEFT, Side.RIGHT]
     blobs = [b for b in (_side_blob(crop, not_door, side, door_area, options, scale) for side in sides)
              if b is not None]
     return (max(blobs, key=lambda b: b.area), stats) if blobs else None

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from door_detection.estimate import DetectionMode, DoorEstimate
+from door_detection.estimate import DetectionMode, DetectedDoor
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
 from door_detection.search_trial import SearchOutcome, SearchSettings, run_search
@@ -76,7 +76,7 @@ class TrialResult:
 def judge(outcome: SearchOutcome, grasp: np.ndarray, normal: np.ndarray, width: float) -> SearchResult:
     """A search against the ground truth (odom)."""
     seconds = float(np.median(outcome.frame_seconds)) if outcome.frame_seconds else 0.0
-    estimate: DoorEstimate | None = outcome.estimate
+    estimate: DetectedDoor | None = outcome.estimate
     if estimate is None:
         return SearchResult(False, math.nan, math.nan, math.nan, "no door confirmed", seconds, outcome.frames,
                             outcome.views, outcome.sim_time)

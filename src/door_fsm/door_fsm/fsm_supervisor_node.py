@@ -24,6 +24,7 @@ from door_contract.node_support import (Heartbeat, as_parameter_error, create_co
 from door_contract.payloads import ExecutionOutcome, OutcomeStatus, PlanningCancel, PlanningOutcome, decode, encode
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
 from door_contract.topics import Services, Topics
+from door_contract.vocabulary import DoorOpening
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.answers import execution_event, planning_event, usable_door_estimate
@@ -34,7 +35,6 @@ from door_fsm.machine import DoorTaskMachine, MachineOptions, MachineOptionsErro
 from door_fsm.operator_commands import AutonomyLevel, UnknownCommandError, parse_command
 from door_fsm.parameters import NODE_NAME, SUPERVISOR_PARAMETERS
 from door_fsm.records import Instant
-from door_fsm.states import DoorOpening
 from door_fsm.summaries import door_summary, task_report, work_of
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
@@ -56,7 +56,7 @@ class FsmSupervisorNode(Node):
                 planning_timeout_s=p["planning_timeout"], approval_timeout_s=p["approval_timeout"],
                 execution_factor=p["execution_timeout_factor"], execution_margin_s=p["execution_timeout_margin"],
                 max_repeats=p["max_repeats"]))
-        self.door = DoorContext(p["opening"], p["backend"])
+        self.door = DoorContext(DoorOpening(p["opening"]), p["backend"])
         self.exchange = PlanExchange(lambda message: work_of(message, step_duration))
         # 4 Hz: the sim bridge's dead-man stops the robot when this heartbeat falls silent
         self.heartbeat = Heartbeat(self, period_s=HEARTBEAT_PERIOD_S)
@@ -173,7 +173,7 @@ class FsmSupervisorNode(Node):
         self.heartbeat.update(health, action.state, reason=action.reason or "-", failure=self.machine.failure_reason or "-")
         self.get_logger().info(f"state {action.state}" + (f" ({action.reason})" if action.reason else ""))
         if self.machine.state.is_terminal:
-            report = task_report(self.machine.state.value, self.machine.failure_reason, self.parameters["opening"],
+            report = task_report(self.machine.state.value, self.machine.failure_reason, self.door.opening,
                                  self.parameters["autonomy"], self.machine.report(),
                                  "sim" if self.get_parameter("use_sim_time").value else "wall")
             self.report_pub.publish(String(data=encode(report)))

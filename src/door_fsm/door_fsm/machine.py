@@ -19,12 +19,13 @@ from __future__ import annotations
 from collections import Counter
 from dataclasses import dataclass
 
+from door_contract.vocabulary import DoorOpening, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.approvals import approval_text, refusal
 from door_fsm.operator_commands import AutonomyLevel, OperatorCommand, OperatorWord
 from door_fsm.records import PHASE_CLOCK, Instant, StateRecord
-from door_fsm.states import DoorOpening, Phase, StateOutcome, TaskState
+from door_fsm.states import Phase, StateOutcome, TaskState
 from door_fsm.wiring import build_wiring
 from door_fsm.work import STATE_WORK, StateWork, WorkKind
 
@@ -147,7 +148,7 @@ class DoorTaskMachine:
     def _request_for(self, work: StateWork, attempt: int) -> act.Action:
         rid = self._request_id
         return {WorkKind.DETECTION: lambda: act.RequestDetection(rid),
-                WorkKind.FOOTSTEPS: lambda: act.RequestFootsteps(rid, work.target, attempt),
+                WorkKind.FOOTSTEPS: lambda: act.RequestFootsteps(rid, WalkGoal(work.target), attempt),
                 WorkKind.MOTION: lambda: act.RequestMotion(rid, work.target, attempt),
                 WorkKind.GRASP: lambda: act.CallGrasp(rid, close=True)}[work.kind]()
 

@@ -60,8 +60,3 @@ class StateOutcome(str, Enum):
     SLIPPED = "slipped"          # the hand slipped off the handle: redo from MOVE_TO_HANDLE
     TIMEOUT = "timeout"
     ABORTED = "aborted"
-
-
-class DoorOpening(str, Enum):
-    PUSH = "push"
-    PULL = "pull"

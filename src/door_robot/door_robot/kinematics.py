@@ -21,8 +21,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import pinocchio as pin
 
+from door_contract.vocabulary import Side
 from door_robot.errors import RobotModelError
-from door_robot.profile import RobotProfile, Side
+from door_robot.profile import RobotProfile
 
 
 @dataclass

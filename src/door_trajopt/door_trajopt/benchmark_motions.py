@@ -27,8 +27,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import DoorModel
 from door_trajopt.library import Backend, MotionLibrary

@@ -29,8 +29,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import rotation_about_up, rotation_vector
 from door_trajopt.ik import pose_error

@@ -35,9 +35,10 @@ from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
 from door_contract.payloads import (DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, encode,
                                     without_non_finite)
 from door_contract.topics import Topics
+from door_contract.vocabulary import DoorOpening, grasp_hand
 from door_robot.errors import RobotModelError
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import Backend, MotionLibrary, MotionPlan
@@ -133,19 +134,17 @@ class TrajectoryOptimizerNode(Node):
             raise PlanningRefused(door_estimate_problem(estimate))
         if snapshot.joint_positions is None or snapshot.base_pose is None:
             raise PlanningRefused("no valid joint states / odometry yet")
-        if request.opening not in ("push", "pull"):
-            raise PlanningRefused(f"unknown opening {request.opening!r}; use 'push' or 'pull'")
         try:
             backend = Backend(request.backend or self.parameters["backend"])
         except ValueError:
             raise PlanningRefused(f"unknown backend {request.backend!r}; use 'sqp' or 'chomp'") from None
         body_q = self.kinematics.configuration(
             {k: v for k, v in snapshot.joint_positions.items() if k in self.kinematics.joint_names})
-        hand = Side(estimate.hinge_side.grasp_hand(request.opening))
+        hand = grasp_hand(estimate.hinge_side, request.opening)
         side = hand.other if motion.uses_other_arm else hand
         chain = ArmChain(self.kinematics, side, body_q)
         door = door_model_from_estimate(estimate, np.linalg.inv(snapshot.base_pose),
-                                        push=request.opening == "push", lever_radius=self.lever_radius)
+                                        push=request.opening is DoorOpening.PUSH, lever_radius=self.lever_radius)
         setup = MotionSetup(chain, door, estimate.width, support_polygon(chain),
                             start_door_for(motion, request.door_angle, self.library.options))
         self.get_logger().info(f"planning {motion.value} with the {side.value} arm ({backend.value})")

@@ -15,12 +15,13 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide
+from footstep_planner.door import DoorGeometry
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.legs import Leg
 from footstep_planner.options import FootstepPlannerOptions
-from footstep_planner.requests import GoalSettings, WalkGoal, options_for_problem, walk_problem
+from footstep_planner.requests import GoalSettings, options_for_problem, walk_problem
 from footstep_planner.world import World
 
 DISTANCES = (1.0, 2.0, 3.0, 4.0)

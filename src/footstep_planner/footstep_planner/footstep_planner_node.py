@@ -23,7 +23,6 @@ from std_msgs.msg import String
 from visualization_msgs.msg import Marker, MarkerArray
 
 from door_contract.converters.diagnostics import Health
-from door_contract.converters.footsteps import Foot as ContractFoot
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
 from door_contract.door_estimates import door_estimate_problem
 from door_contract.geometry import yaw_of
@@ -38,19 +37,17 @@ from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
 from door_contract.payloads import (DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, encode,
                                     without_non_finite)
 from door_contract.topics import Topics
+from door_contract.vocabulary import DoorOpening, Foot, WalkGoal
 from door_robot.errors import RobotModelError
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorOpening
 from footstep_planner.errors import FootstepPlannerError
-from footstep_planner.footstep import Foot, Pose2D, Stance
+from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.goals import replan_needed
 from footstep_planner.legs import plan_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import NODE_NAME, PLANNER_PARAMETERS
 from footstep_planner.plan import FootstepPlan, PlanResult
-from footstep_planner.requests import (GoalSettings, WalkGoal, WalkProblem, door_geometry_from_estimate,
-                                       options_for_problem, passage_angle, planner_options, start_stance,
-                                       walk_problem)
+from footstep_planner.requests import (GoalSettings, WalkProblem, door_geometry_from_estimate, options_for_problem, passage_angle, planner_options, start_stance, walk_problem)
 
 __all__ = ["FootstepPlannerNode", "door_geometry_from_estimate", "planner_options", "main"]
 
@@ -162,16 +159,12 @@ class FootstepPlannerNode(Node):
                                  f"door estimate of stamp {request.door_stamp:.3f} s was not received")
         if door_estimate_problem(estimate):
             raise RequestRefused(door_estimate_problem(estimate))
-        if request.goal not in {goal.value for goal in WalkGoal}:
-            raise RequestRefused(f"unknown goal {request.goal!r}; use 'stand' or 'through'")
-        if request.opening not in ("push", "pull"):
-            raise RequestRefused(f"unknown opening {request.opening!r}; use 'push' or 'pull'")
-        goal = WalkGoal(request.goal)
+        goal = request.goal  # the contract decoded goal and opening: unknown words were refused there
         pose = snapshot.base_pose
         body = Pose2D(float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
         feet = None if snapshot.feet is None else tuple(Pose2D(f.x, f.y, f.yaw) for f in snapshot.feet)
         start = start_stance(body, self.options.nominal_foot_separation, feet, snapshot.planned_stance)
-        door = door_geometry_from_estimate(estimate, DoorOpening(request.opening), request.door_angle,
+        door = door_geometry_from_estimate(estimate, request.opening, request.door_angle,
                                            self.settings.handle_standoff)
         if goal is WalkGoal.THROUGH and door.opening is DoorOpening.PUSH:
             angle = passage_angle(request.door_angle, self.settings)
@@ -203,8 +196,7 @@ def contract_footsteps(start: Stance, plan: FootstepPlan) -> list[FootPlacement]
     steps = list(plan.steps)
     if steps and steps[0].foot is Foot.RIGHT:
         steps.insert(0, start.left)
-    return [FootPlacement(ContractFoot.LEFT if s.foot is Foot.LEFT else ContractFoot.RIGHT, s.x, s.y, s.yaw)
-            for s in steps]
+    return [FootPlacement(s.foot, s.x, s.y, s.yaw) for s in steps]
 
 
 def footstep_markers(steps: list[FootPlacement], options: FootstepPlannerOptions) -> MarkerArray:
@@ -216,7 +208,7 @@ def footstep_markers(steps: list[FootPlacement], options: FootstepPlannerOptions
         marker.pose.position.x, marker.pose.position.y, marker.pose.position.z = step.x, step.y, 0.01
         marker.pose.orientation.z, marker.pose.orientation.w = math.sin(step.yaw / 2), math.cos(step.yaw / 2)
         marker.scale.x, marker.scale.y, marker.scale.z = options.foot_length, options.foot_width, 0.02
-        left = step.foot is ContractFoot.LEFT
+        left = step.foot is Foot.LEFT
         marker.color.r, marker.color.g, marker.color.b, marker.color.a = (0.1, 0.4, 1.0, 0.8) if left else (1.0, 0.3, 0.1, 0.8)
         markers.markers.append(marker)
     return markers

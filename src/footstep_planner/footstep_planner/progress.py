@@ -57,7 +57,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from footstep_planner.footstep import Foot
+from door_contract.vocabulary import Foot
 from footstep_planner.geometry import FloatArray, wrap_angles
 
 TABLE_STEPS = 48

@@ -19,10 +19,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from door_contract.vocabulary import Foot
 from footstep_planner.actions import ActionTable
 from footstep_planner.closed_set import ClosedSetGrid
 from footstep_planner.footprint import FootprintChecker
-from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.geometry import Bounds, wrap_angle, wrap_angles
 from footstep_planner.heuristic import FootstepHeuristic, is_goal_centre
 from footstep_planner.options import FootstepPlannerOptions
