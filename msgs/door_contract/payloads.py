@@ -179,7 +179,7 @@ def decode(payload_type: type[Payload], text: str) -> Payload:
     if not isinstance(document, dict):
         raise ContractError(f"{payload_type.__name__}: expected a JSON object")
     hints = get_type_hints(payload_type)
-    fields = {f.name: f for f in dataclasses.fields(payload_type)}
+    fields = {f.name: f for f in dataclasses.fields(payload_type)}  # type: ignore[arg-type]  # Payload: any dataclass
     unknown = sorted(set(document) - set(fields))
     if unknown:
         raise ContractError(f"{payload_type.__name__}: unknown field(s) {', '.join(unknown)}")
@@ -191,8 +191,8 @@ def decode(payload_type: type[Payload], text: str) -> Payload:
         raise ContractError(f"{payload_type.__name__}: {error}") from None
 
 
-def _finite_tuple(owner: str, name: str, values: list) -> tuple:
-    items = []
+def _finite_tuple(owner: str, name: str, values: list[Any]) -> tuple[Any, ...]:
+    items: list[Any] = []
     for value in values:
         if isinstance(value, list):
             items.append(_finite_tuple(owner, name, value))
@@ -209,6 +209,8 @@ def _finite_tuple(owner: str, name: str, values: list) -> tuple:
 
 def _field_value(owner: str, name: str, hint: Any, value: Any) -> Any:
     if isinstance(hint, type) and issubclass(hint, Enum):
+        if issubclass(hint, str) and not isinstance(value, str):
+            raise ContractError(f"{owner}.{name}: expected a string, got {value!r}")
         try:
             return hint(value)
         except ValueError:

@@ -7,13 +7,13 @@ import pytest
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
 from rclpy.serialization import deserialize_message, serialize_message
+from ros_helpers import executor_for, spin_until
 from sensor_msgs.msg import Image
 from std_msgs.msg import String
 
 from door_bringup.bags.player import PlaybackOptions, PlaybackOptionsError, playback_offsets
 from door_bringup.bags.storage import BagError, BagWriter, StorageFormat, list_topics, read_messages
 from door_contract.topics import Topics, interface_class
-from ros_helpers import executor_for, spin_until
 
 REAL_BAGS = {  # folder: {topic: count} (SOURCES.md 1b, 1c)
     "rosbag2_talker_sqlite3": {"/topic": 10, "/rosout": 10},

@@ -54,7 +54,8 @@ def _synthetic_bag(path):
     odom = Odometry()
     odom.pose.pose.position.x, odom.pose.pose.position.z, odom.pose.pose.orientation.w = -1.0, 1.02, 1.0
     with BagWriter(path, StorageFormat.SQLITE3) as writer:
-        write = lambda topic, ns, msg: writer.write(topic.name, topic.type_name, ns, serialize_message(msg))
+        def write(topic, ns, msg):
+            return writer.write(topic.name, topic.type_name, ns, serialize_message(msg))
         write(Topics.DOOR_ESTIMATE, 1, String(data=encode(ESTIMATE)))
         write(Topics.TASK_STATE, 5_000_000_000, String(data="OPEN_DOOR/PUSH"))  # bag time: wall ns
         for k in range(21):

@@ -9,11 +9,11 @@ from pathlib import Path
 
 import pytest
 import rclpy
+from ros_helpers import executor_for, node_names, spin_until
 
 from door_bringup.graph_spec import GRAPH
 from door_bringup.processes import ProcessSupervisor
 from door_bringup.workspace import WorkspaceError, find_repository_root
-from ros_helpers import executor_for, node_names, spin_until
 
 
 def test_colcon_install_has_every_executable_and_ament_index_entry(workspace):

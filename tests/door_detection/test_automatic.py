@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from helpers_detection import angle_deg, handle_error
 
 from door_contract.vocabulary import DoorOpening, HingeSide, Side
 from door_detection.automatic import detect_automatic
 from door_detection.estimate import DetectionMode, DetectionOutcome
 from door_detection.options import DetectionOptions
-from helpers_detection import angle_deg, handle_error
 
 
 def test_sim_door_at_two_metres_straight_on(straight_on) -> None:

@@ -78,9 +78,7 @@ def test_table_two_with_the_head_search_on_one_cell() -> None:
 
 def test_a_search_without_a_door_is_judged_a_failure() -> None:
     from door_detection.search_trial import SearchOutcome
-    from door_detection.table_two import judge
-
-    from door_detection.table_two import TrialResult, failed_starts
+    from door_detection.table_two import TrialResult, failed_starts, judge
     from door_detection.trial_scenes import TrialScene
 
     result = judge(SearchOutcome(None, 12, 6, 9.0, (0.02,) * 12), np.zeros(3), np.array([-1.0, 0, 0]), 0.9)

@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import numpy as np
+from helpers_detection import angle_deg, handle_error
 
 from door_contract.vocabulary import DoorOpening, HingeSide, Side
 from door_detection.estimate import DetectionMode, DetectionOutcome
 from door_detection.operator_aided import detect_from_scribble
-from helpers_detection import angle_deg, handle_error
 
 
 def test_scribble_at_three_and_a_half_metres(sim_scene) -> None:

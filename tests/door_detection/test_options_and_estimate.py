@@ -7,7 +7,7 @@ import pytest
 
 from door_contract.vocabulary import Side
 from door_detection.errors import DetectionError
-from door_detection.estimate import DetectionMode, DetectedDoor
+from door_detection.estimate import DetectedDoor, DetectionMode
 from door_detection.options import DetectionOptions
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from door_contract.vocabulary import Side
-from door_detection.estimate import DetectionMode, DetectionOutcome, DetectionResult, DetectedDoor
+from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
 from door_detection.options import DetectionOptions
 from door_detection.voting import Voter, precision
 

@@ -1,8 +1,8 @@
 """The ROS-free pieces under the supervisor node: graph watching, answers → events, the work
 of a proposal, the requests built from the door context."""
 
-from nav_msgs.msg import Path
 from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Path
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus

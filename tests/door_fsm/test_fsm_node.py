@@ -6,6 +6,7 @@ from pathlib import Path
 import pytest
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
+from ros_helpers import executor_for, spin_until
 from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
@@ -13,7 +14,6 @@ from door_contract.node_support import create_contract_publisher, create_contrac
 from door_contract.payloads import DoorEstimate, TaskReport, decode, encode
 from door_contract.topics import Topics
 from door_contract.vocabulary import HingeSide
-from ros_helpers import executor_for, spin_until
 
 pytestmark = pytest.mark.ros
 FSM = next(launch for launch in GRAPH if launch.node_name == "fsm_supervisor")

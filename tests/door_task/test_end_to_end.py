@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 import rclpy
 from rclpy.serialization import deserialize_message
+from ros_helpers import executor_for, spin_until
 
 from door_bringup.bags.storage import read_messages
 from door_bringup.door_task import TaskOptions, run_task
@@ -16,7 +17,6 @@ from door_bringup.graph_spec import GRAPH
 from door_contract.node_support import create_contract_subscription
 from door_contract.payloads import DoorEstimate, decode
 from door_contract.topics import Topics
-from ros_helpers import executor_for, spin_until
 
 pytestmark = pytest.mark.slow
 

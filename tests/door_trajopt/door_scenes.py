@@ -13,9 +13,8 @@ from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.motions import MotionSetup, support_polygon
 from footstep_planner.footstep_planner_node import door_geometry_from_estimate, planner_options
-from footstep_planner.parameters import PLANNER_PARAMETERS
 from footstep_planner.goals import stand_pose_for_opening
-
+from footstep_planner.parameters import PLANNER_PARAMETERS
 
 PLANNER_DEFAULTS = {spec.name: spec.default for spec in PLANNER_PARAMETERS}
 

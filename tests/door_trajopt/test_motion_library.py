@@ -5,19 +5,25 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from door_scenes import estimate_from_world, motion_setup, stand_world, talos_kinematics
 
 from door_contract.vocabulary import DoorOpening, HingeSide, grasp_hand
 from door_sim_bridge.execution import TrajectoryExecution
-from door_trajopt.door_model import rotation_vector
-from door_trajopt.library import Backend, MotionLibrary
 from door_trajopt.chomp import ChompSolver
+from door_trajopt.door_model import rotation_vector
 from door_trajopt.evaluation import ProblemEvaluator
-from door_trajopt.motions import (DoorStateOutOfRange, Motion, _tcp_in_grasp, anchored_to_hand, build_motion,
-                                  start_door_for)
+from door_trajopt.library import Backend, MotionLibrary
+from door_trajopt.motions import (
+    DoorStateOutOfRange,
+    Motion,
+    _tcp_in_grasp,
+    anchored_to_hand,
+    build_motion,
+    start_door_for,
+)
 from door_trajopt.problem import TrajoptError
-from door_trajopt.sqp import SqpSolver
 from door_trajopt.result import Outcome
-from door_scenes import estimate_from_world, motion_setup, stand_world, talos_kinematics
+from door_trajopt.sqp import SqpSolver
 
 
 @pytest.fixture(scope="module")

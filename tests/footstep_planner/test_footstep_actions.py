@@ -7,16 +7,21 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from footstep_scenes import profile_options
 
 from door_contract.vocabulary import Foot
-from footstep_planner.actions import (CLEARANCE_STEP, CLOSING_STEP, ActionSet, StepAction, cleared_turn,
-                                      is_kinematically_valid)
+from footstep_planner.actions import (
+    CLEARANCE_STEP,
+    CLOSING_STEP,
+    ActionSet,
+    StepAction,
+    cleared_turn,
+    is_kinematically_valid,
+)
 from footstep_planner.geometry import rectangle_corners
 from footstep_planner.obstacles import Obstacle
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.world import World
-
-from footstep_scenes import profile_options
 
 OPTIONS = FootstepPlannerOptions()
 ACTIONS = ActionSet.from_options(OPTIONS)

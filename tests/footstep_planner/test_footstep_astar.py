@@ -6,6 +6,16 @@ import math
 from dataclasses import replace
 
 import pytest
+from footstep_scenes import (
+    DEFAULT_OPTIONS,
+    alternates,
+    collisions_along,
+    door_facing_robot,
+    in_front_of,
+    kinematic_violations,
+    relative_step,
+    stance_at,
+)
 
 from door_contract.vocabulary import DoorOpening, Foot, HingeSide
 from footstep_planner.astar import FootstepPlanner, plan_footsteps
@@ -15,9 +25,6 @@ from footstep_planner.obstacles import Obstacle
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import PlanOutcome, PlanResult
 from footstep_planner.world import World
-
-from footstep_scenes import (DEFAULT_OPTIONS, alternates, collisions_along, door_facing_robot,
-                             in_front_of, kinematic_violations, relative_step, stance_at)
 
 OPEN_SPACE = FootstepPlanner(World())
 

@@ -13,8 +13,8 @@ import pytest
 from door_contract.payloads import DoorEstimate
 from door_contract.vocabulary import DoorOpening, HingeSide
 from door_sim_bridge.world import DoorConfig, DoorWorld, WorldConfig
-from footstep_planner.requests import door_geometry_from_estimate
 from footstep_planner.goals import through_door_pose
+from footstep_planner.requests import door_geometry_from_estimate
 
 
 def _estimate(world: DoorWorld, with_edges: bool = True) -> DoorEstimate:

@@ -7,7 +7,7 @@ import pytest
 
 from door_contract.vocabulary import DoorOpening, HingeSide
 from door_sim_bridge.errors import SimulationError
-from door_sim_bridge.world import (CameraConfig, DoorConfig, ExecutionConfig, StanceConfig, WindConfig, WorldConfig)
+from door_sim_bridge.world import CameraConfig, DoorConfig, ExecutionConfig, StanceConfig, WindConfig, WorldConfig
 from door_sim_bridge.world.door import DoorLayout, door_urdf
 
 

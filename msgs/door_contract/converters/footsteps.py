@@ -16,9 +16,9 @@ from nav_msgs.msg import Path
 
 from door_contract.converters._checks import require_finite
 from door_contract.converters.pose import matrix_to_pose_stamped, pose_to_matrix
-from door_contract.geometry import planar_pose, yaw_of
 from door_contract.errors import ShapeError
 from door_contract.frames import Frame
+from door_contract.geometry import planar_pose, yaw_of
 from door_contract.stamps import Stamp, to_time_msg
 from door_contract.vocabulary import Foot
 

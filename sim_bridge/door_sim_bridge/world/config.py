@@ -18,7 +18,8 @@ from enum import Enum
 
 from door_contract.vocabulary import DoorOpening, HingeSide
 from door_sim_bridge.errors import SimulationError
-from door_sim_bridge.validation import check_ranges, require as _require
+from door_sim_bridge.validation import check_ranges
+from door_sim_bridge.validation import require as _require
 from door_sim_bridge.walking.gait import GaitOptions
 from door_sim_bridge.walking.stabilizer import StabilizerOptions
 

@@ -31,22 +31,21 @@ import numpy as np
 import pybullet
 
 from door_contract.converters.footsteps import FootPlacement
+from door_contract.geometry import planar_pose, yaw_of
+from door_contract.vocabulary import Foot, Side
 from door_robot.locations import cmeel_share_dir
 from door_robot.profile import load_profile
 from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.world.balance import BalanceLoop
 from door_sim_bridge.world.camera import CameraFrame, HeadCamera, optical_offset
 from door_sim_bridge.world.client import PhysicsClient
-from door_sim_bridge.world.balance import BalanceLoop
 from door_sim_bridge.world.config import RobotMode, StanceConfig, WorldConfig
-from door_sim_bridge.world.hardware import make_floor
-from door_sim_bridge.world.robot_urdf import sole_placement_link
 from door_sim_bridge.world.door import DoorGroundTruth, DoorPart, DoorState, LatchEvent, SimDoor
 from door_sim_bridge.world.grasp import GraspController, GraspResult
+from door_sim_bridge.world.hardware import make_floor
 from door_sim_bridge.world.robot import JointLimit, JointStates, SimRobot
-from door_contract.geometry import planar_pose, yaw_of
-from door_contract.vocabulary import Foot, Side
+from door_sim_bridge.world.robot_urdf import sole_placement_link
 from door_sim_bridge.world.transforms import invert, is_rigid
-
 
 SOLE_CLEARANCE = 0.0005  # m between the lowest sole and the floor when the robot is placed
 

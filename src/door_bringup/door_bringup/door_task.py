@@ -22,7 +22,7 @@ import json
 import sys
 import time
 from dataclasses import dataclass
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 
 import rclpy
@@ -223,7 +223,7 @@ def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
 def main(argv: list[str] | None = None) -> int:
     options, run_dir = parse_options(argv)
     workspace = Workspace(repository_root())
-    stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%SZ")
     run_dir = run_dir or workspace.root / "runs" / f"{stamp}_{options.opening}_{options.hinge}"
     run_dir.mkdir(parents=True, exist_ok=True)
     print(f"door task: {options.opening} door hinged {options.hinge}, autonomy {options.autonomy}, "

@@ -37,7 +37,7 @@ from door_contract.vocabulary import Side
 from door_detection.door_pairs import DoorCandidate, corners_3d, door_surface_points, find_doors
 from door_detection.edges import edge_width, refine_door_edges
 from door_detection.errors import InputError
-from door_detection.estimate import DetectionMode, DetectionOutcome, DetectionResult, DetectedDoor
+from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
 from door_detection.grasp import locate_grasp
 from door_detection.handle import HandleBlob, find_handle, touches_border
 from door_detection.jambs import trim_jambs
@@ -45,7 +45,6 @@ from door_detection.lines import VerticalLines, detect_vertical_lines
 from door_detection.options import DetectionOptions
 from door_detection.plane import refine_plane
 from door_detection.preprocessing import DepthError, RgbdFrame, validate_frame
-
 
 UNEXPECTED_ERRORS = (ArithmeticError, IndexError, ValueError, np.linalg.LinAlgError, cv2.error)
 """Failures inside the pipeline that no input check foresaw: reported, never raised."""

@@ -40,9 +40,7 @@ from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
 from door_detection.sim_scenes import DOOR_COLOURS, HANDLE_COLOURS, Scenario, SceneFrame, render_scenario
-from door_detection.tables import (HANDLE_TOLERANCE, NORMAL_TOLERANCE_DEG, MODES, paper_table, success_table,
-                                   summary)
-
+from door_detection.tables import HANDLE_TOLERANCE, MODES, NORMAL_TOLERANCE_DEG, paper_table, success_table, summary
 
 
 @dataclass(frozen=True)

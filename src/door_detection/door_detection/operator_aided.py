@@ -37,7 +37,7 @@ from door_contract.converters.camera_info import CameraIntrinsics
 from door_contract.vocabulary import Side
 from door_detection.automatic import UNEXPECTED_ERRORS
 from door_detection.errors import InputError
-from door_detection.estimate import DetectionMode, DetectionOutcome, DetectionResult, DetectedDoor
+from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
 from door_detection.grasp import locate_grasp
 from door_detection.handle import ColourStats, HandleBlob, colour_stats, grow_blob
 from door_detection.options import DetectionOptions

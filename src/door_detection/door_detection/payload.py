@@ -34,8 +34,10 @@ def _nominal_corners(estimate: DetectedDoor, nominal: dict) -> np.ndarray:
     towards_hinge = left if estimate.hinge_side is Side.LEFT else -left
     free_edge = np.asarray(estimate.handle_position) - nominal["grasp_to_free_edge"] * towards_hinge
     hinge_edge = free_edge + nominal["nominal_door_width"] * towards_hinge
-    bottom = lambda p: np.array([p[0], p[1], 0.0])
-    top = lambda p: np.array([p[0], p[1], nominal["nominal_door_height"]])
+    def bottom(p):
+        return np.array([p[0], p[1], 0.0])
+    def top(p):
+        return np.array([p[0], p[1], nominal["nominal_door_height"]])
     return np.array([bottom(hinge_edge), bottom(free_edge), top(free_edge), top(hinge_edge)])
 
 

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from door_detection.automatic import detect_automatic
-from door_detection.estimate import DetectionMode, DetectionOutcome, DetectionResult, DetectedDoor
+from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.sim_scenes import lever_corners, synthetic_scribble

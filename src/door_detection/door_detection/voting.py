@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import stdtrit
 
-from door_detection.estimate import DetectionOutcome, DetectionResult, DetectedDoor
+from door_detection.estimate import DetectedDoor, DetectionOutcome, DetectionResult
 from door_detection.options import DetectionOptions
 
 

@@ -104,10 +104,14 @@ def load_profile(name_or_path: str = "talos") -> RobotProfile:
         raise RobotModelError(f"robot profile {name_or_path!r} is incomplete: {error}") from None
 
 
+def _xyz(values: Any) -> tuple[float, float, float]:
+    x, y, z = (float(v) for v in values)
+    return x, y, z
+
+
 def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
-    arms = {Side(side): ArmSpec(tuple(arm["joints"]), arm["tcp_parent_frame"],
-                                 tuple(float(v) for v in arm["grasp_offset"]),
-                                 arm.get("gripper_joint"))
+    arms = {Side(side): ArmSpec(tuple(arm["joints"]), arm["tcp_parent_frame"], _xyz(arm["grasp_offset"]),
+                                arm.get("gripper_joint"))
             for side, arm in document["arms"].items()}
     posture = {name: float(value) for name, value in document["nominal_posture"].items()}
     if not all(math.isfinite(v) for v in posture.values()):

@@ -49,12 +49,12 @@ from scipy.linalg import LinAlgError, cho_factor, cho_solve
 
 from door_trajopt.banded import KroneckerBandedCholesky, LowRankUpdatedMetric, MetricSolver
 from door_trajopt.evaluation import (
-    guarded_solve,
     PointModel,
     PointValues,
     ProblemEvaluator,
     RunSummary,
     build_result,
+    guarded_solve,
 )
 from door_trajopt.problem import FloatArray, TrajectoryProblem
 from door_trajopt.result import OptimizationResult

@@ -11,10 +11,9 @@ axis towards the hinge side, and the grasp point lies ``lever_radius`` from the 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
-
-import math
 
 import numpy as np
 import pinocchio as pin

@@ -21,13 +21,19 @@ import numpy as np
 
 from door_contract.converters.trajectory import JointPath
 from door_trajopt.chomp import ChompOptions, ChompSolver
-from door_trajopt.motions import (Motion, MotionOptions, MotionProblem, MotionSetup, anchored_to_hand, build_motion,
-                                  check_start_door)
+from door_trajopt.motions import (
+    Motion,
+    MotionOptions,
+    MotionProblem,
+    MotionSetup,
+    anchored_to_hand,
+    build_motion,
+    check_start_door,
+)
 from door_trajopt.problem import TrajoptError
 from door_trajopt.result import OptimizationResult, Outcome
 from door_trajopt.sqp import SqpOptions, SqpSolver
 from door_trajopt.timing import time_parameterise
-
 
 MAX_ATTEMPT_SCALE = 4  # a repeat gets at most this many times the first attempt's iterations
 

@@ -34,8 +34,7 @@ from door_robot.kinematics import RobotKinematics
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import rotation_about_up, rotation_vector
 from door_trajopt.ik import pose_error
-from door_trajopt.problem import (ConstraintKind, Derivative, JointLimits, SmoothnessSpec,
-                                  TrajectoryProblem)
+from door_trajopt.problem import ConstraintKind, Derivative, JointLimits, SmoothnessSpec, TrajectoryProblem
 from door_trajopt.waypoint_constraints import waypoint_constraint
 
 WAYPOINTS = 100

@@ -52,15 +52,15 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from door_trajopt.evaluation import (
-    guarded_solve,
     PointModel,
     PointValues,
     ProblemEvaluator,
     RunSummary,
     build_result,
+    guarded_solve,
 )
-from door_trajopt.problem import FloatArray, TrajectoryProblem, TrajoptError
 from door_trajopt.lagrangian_curvature import BlockCurvature, block_pattern
+from door_trajopt.problem import FloatArray, TrajectoryProblem, TrajoptError
 from door_trajopt.qp_layout import QpLayout
 from door_trajopt.result import OptimizationResult
 from door_trajopt.validation import require_in_range, require_int_at_least

@@ -22,18 +22,29 @@ from std_msgs.msg import String
 
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.joint_state import joint_state_to_positions
-
 from door_contract.converters.trajectory import joint_path_to_msg
 from door_contract.door_estimates import door_estimate_problem
 from door_contract.errors import ContractError
-from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
-                                        create_contract_subscription, declare_parameters, run_node)
-from door_contract.planner_inputs import PlannerInputs
+from door_contract.node_support import (
+    Heartbeat,
+    as_parameter_error,
+    create_contract_publisher,
+    create_contract_subscription,
+    declare_parameters,
+    run_node,
+)
+from door_contract.payloads import (
+    DoorEstimate,
+    MotionRequest,
+    OutcomeStatus,
+    PlanningOutcome,
+    encode,
+    without_non_finite,
+)
 from door_contract.planner_desk import PlannerDesk
+from door_contract.planner_inputs import PlannerInputs
 from door_contract.planner_service import Finished
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
-from door_contract.payloads import (DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, encode,
-                                    without_non_finite)
 from door_contract.topics import Topics
 from door_contract.vocabulary import DoorOpening, grasp_hand
 from door_robot.errors import RobotModelError
@@ -42,7 +53,14 @@ from door_robot.profile import load_profile
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import Backend, MotionLibrary, MotionPlan
-from door_trajopt.motions import DoorStateOutOfRange, Motion, MotionOptions, MotionSetup, start_door_for, support_polygon
+from door_trajopt.motions import (
+    DoorStateOutOfRange,
+    Motion,
+    MotionOptions,
+    MotionSetup,
+    start_door_for,
+    support_polygon,
+)
 from door_trajopt.parameters import NODE_NAME, OPTIMIZER_PARAMETERS
 
 
@@ -101,8 +119,9 @@ class TrajectoryOptimizerNode(Node):
     def _deliver_one(self, finished: Finished) -> None:
         """On the executor thread: one outcome per finished request, and the trajectory if proposed."""
         request, plan = finished.request, finished.result
-        answer = lambda status, reason, plan=None, stamp=-1: self._answer(
-            request.request_id, request.motion, request.backend, status, reason, plan, stamp)
+        def answer(status, reason, plan=None, stamp=-1):
+            return self._answer(
+                    request.request_id, request.motion, request.backend, status, reason, plan, stamp)
         if finished.dropped:
             return answer(OutcomeStatus.SUPERSEDED, finished.dropped)
         if isinstance(finished.error, (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)):

@@ -28,8 +28,13 @@ import numpy as np
 
 from door_contract.vocabulary import Foot
 from footstep_planner.footstep import Footstep
-from footstep_planner.geometry import (FloatArray, PackedPolygons, rectangle_axes,
-                                       rectangle_corners, rectangles_overlap_polygons)
+from footstep_planner.geometry import (
+    FloatArray,
+    PackedPolygons,
+    rectangle_axes,
+    rectangle_corners,
+    rectangles_overlap_polygons,
+)
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.progress import StepEffects
 

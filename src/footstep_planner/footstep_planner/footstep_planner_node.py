@@ -15,6 +15,7 @@ legs) is built by :mod:`footstep_planner.requests`.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -25,17 +26,28 @@ from visualization_msgs.msg import Marker, MarkerArray
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
 from door_contract.door_estimates import door_estimate_problem
-from door_contract.geometry import yaw_of
 from door_contract.errors import ContractError
 from door_contract.frames import Frame
-from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
-                                        declare_parameters, run_node)
-from door_contract.planner_inputs import PlannerInputs
+from door_contract.geometry import yaw_of
+from door_contract.node_support import (
+    Heartbeat,
+    as_parameter_error,
+    create_contract_publisher,
+    declare_parameters,
+    run_node,
+)
+from door_contract.payloads import (
+    DoorEstimate,
+    FootstepRequest,
+    OutcomeStatus,
+    PlanningOutcome,
+    encode,
+    without_non_finite,
+)
 from door_contract.planner_desk import PlannerDesk
+from door_contract.planner_inputs import PlannerInputs
 from door_contract.planner_service import Finished
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
-from door_contract.payloads import (DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, encode,
-                                    without_non_finite)
 from door_contract.topics import Topics
 from door_contract.vocabulary import DoorOpening, Foot, WalkGoal
 from door_robot.errors import RobotModelError
@@ -47,7 +59,16 @@ from footstep_planner.legs import plan_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import NODE_NAME, PLANNER_PARAMETERS
 from footstep_planner.plan import FootstepPlan, PlanResult
-from footstep_planner.requests import (GoalSettings, WalkProblem, door_geometry_from_estimate, options_for_problem, passage_angle, planner_options, start_stance, walk_problem)
+from footstep_planner.requests import (
+    GoalSettings,
+    WalkProblem,
+    door_geometry_from_estimate,
+    options_for_problem,
+    passage_angle,
+    planner_options,
+    start_stance,
+    walk_problem,
+)
 
 __all__ = ["FootstepPlannerNode", "door_geometry_from_estimate", "planner_options", "main"]
 
@@ -61,7 +82,7 @@ class Snapshot:
     """The inputs a request is planned from, taken when it arrives (the measured state)."""
 
     base_pose: np.ndarray | None
-    feet: list | None
+    feet: list[FootPlacement] | None
     estimate: DoorEstimate | None
     planned_stance: Stance | None
 
@@ -94,7 +115,7 @@ class FootstepPlannerNode(Node):
         self.get_logger().info(f"ready: {self.parameters['robot_profile']} steps ≤ {self.options.max_stride} m, "
                                f"heuristic weight {self.options.heuristic_weight}")
 
-    def _job_for(self, request: FootstepRequest, estimate: DoorEstimate | None):
+    def _job_for(self, request: FootstepRequest, estimate: DoorEstimate | None) -> Callable[[], Solved]:
         """The planning job of ``request`` over the inputs as they are now (the measured state)."""
         snapshot = Snapshot(None if self.inputs.base_pose is None else self.inputs.base_pose.copy(),
                             self.inputs.feet, estimate, self.planned_stance)
@@ -162,7 +183,7 @@ class FootstepPlannerNode(Node):
         goal = request.goal  # the contract decoded goal and opening: unknown words were refused there
         pose = snapshot.base_pose
         body = Pose2D(float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
-        feet = None if snapshot.feet is None else tuple(Pose2D(f.x, f.y, f.yaw) for f in snapshot.feet)
+        feet = None if snapshot.feet is None else _sole_poses(snapshot.feet)
         start = start_stance(body, self.options.nominal_foot_separation, feet, snapshot.planned_stance)
         door = door_geometry_from_estimate(estimate, request.opening, request.door_angle,
                                            self.settings.handle_standoff)
@@ -188,6 +209,12 @@ class FootstepPlannerNode(Node):
     def destroy_node(self) -> None:
         self.desk.close()
         super().destroy_node()
+
+
+def _sole_poses(feet: list[FootPlacement]) -> tuple[Pose2D, Pose2D]:
+    """The measured (left, right) sole poses."""
+    left, right = (Pose2D(f.x, f.y, f.yaw) for f in feet)
+    return left, right
 
 
 def contract_footsteps(start: Stance, plan: FootstepPlan) -> list[FootPlacement]:

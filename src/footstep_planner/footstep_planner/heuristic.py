@@ -53,6 +53,7 @@ from footstep_planner.geometry import FloatArray, wrap_angles
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.progress import ProgressTable
 
+
 @dataclass(frozen=True)
 class FootstepHeuristic:
     """h for a goal; see the module docstring for the maths and the admissibility proof."""

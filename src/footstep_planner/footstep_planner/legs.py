@@ -47,12 +47,13 @@ def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2
     started = time.perf_counter()
     if not waypoints:
         return PlanResult(PlanOutcome.INVALID_GOAL, "no waypoints to walk through", None, 0, 0.0)
-    stance, steps, cost, expansions = start, [], 0.0, 0
+    stance, cost, expansions = start, 0.0, 0
+    steps: list[Footstep] = []
     legs = [Leg.of(waypoint) for waypoint in waypoints]
     for number, leg in enumerate(legs, start=1):
         result = planner.plan(stance, leg.goal, leg.pruning, attempt=attempt)
         expansions += result.expansions
-        if not result.succeeded:
+        if not result.succeeded or result.plan is None:  # a search that succeeded has a plan
             label = f"leg {number} of {len(legs)}" + (f" ({leg.name})" if leg.name else "")
             return PlanResult(result.outcome, f"{label}: {result.reason}", None,
                               expansions, time.perf_counter() - started)

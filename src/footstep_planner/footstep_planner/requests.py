@@ -144,7 +144,7 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
     (:func:`~footstep_planner.narrow.passage_legs`).
     """
     if goal is WalkGoal.STAND:
-        legs = (Leg(stand_pose(door, options, settings), "to the stand pose"),)
+        legs: tuple[Leg, ...] = (Leg(stand_pose(door, options, settings), "to the stand pose"),)
         return WalkProblem(start, legs, World.from_door(door), door)
     if door.opening is DoorOpening.PULL:
         poses = pull_passage_waypoints(door, stand_pose(door, options, settings), settings.beyond_door)

@@ -244,7 +244,7 @@ class Search:
         hits = self._world.rectangles_touch(points[rows, 0], points[rows, 1],
                                             np.concatenate((foot_yaw, foot_yaw, midpoint_yaw)),
                                             half_length[rows], half_width[rows])
-        return ~hits.reshape(3, -1).any(axis=0)
+        return np.asarray(~hits.reshape(3, -1).any(axis=0))
 
     def _success(self, start: Stance, index: int, expansions: int) -> PlanResult:
         steps = (*self._path(index), self._closing_step(index))

@@ -8,9 +8,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from footstep_planner.geometry import (BoolArray, FloatArray, PackedPolygons, edge_normals,
-                                       interior_angles, rectangle_axes,
-                                       rectangles_overlap_polygons, rectangles_touch_any)
+from footstep_planner.geometry import (
+    BoolArray,
+    FloatArray,
+    PackedPolygons,
+    edge_normals,
+    interior_angles,
+    rectangle_axes,
+    rectangles_overlap_polygons,
+    rectangles_touch_any,
+)
 from footstep_planner.obstacles import Obstacle
 
 if TYPE_CHECKING:
