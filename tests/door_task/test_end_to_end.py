@@ -18,7 +18,7 @@ from door_contract.node_support import create_contract_subscription
 from door_contract.payloads import DoorEstimate, decode
 from door_contract.topics import Topics
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.ros]  # the whole graph as processes
 
 
 @pytest.fixture(scope="module")

@@ -23,6 +23,8 @@ from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_trajopt.library import MotionLibrary
 
+pytestmark = pytest.mark.ros  # starts rclpy nodes / DDS participants
+
 OPTIMIZER = next(launch for launch in GRAPH if launch.node_name == "trajectory_optimizer")
 # base at (-0.5, -0.12) facing +x, door plane x = 0, left hinge: the footstep planner's stand pose
 ESTIMATE = DoorEstimate(1.0, "odom", (-0.06, -0.321, 0.91), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,

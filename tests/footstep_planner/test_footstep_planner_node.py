@@ -20,6 +20,8 @@ from door_contract.stamps import stamp_ns
 from door_contract.topics import Topics
 from door_contract.vocabulary import Foot, HingeSide
 
+pytestmark = pytest.mark.ros  # starts rclpy nodes / DDS participants
+
 PLANNER = next(launch for launch in GRAPH if launch.node_name == "footstep_planner")
 # Wall at x = 0, robot at x = -4 facing +x; left hinge at y = +0.457, handle near y = -0.39.
 ESTIMATE = DoorEstimate(0.0, "odom", (-0.06, -0.39, 0.91), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
