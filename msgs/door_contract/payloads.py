@@ -122,19 +122,6 @@ class PlanningCancel:
 
 
 @dataclasses.dataclass(frozen=True)
-class StateAttempt:
-    """One attempt at one FSM state (times in seconds)."""
-
-    state: str
-    attempt: int
-    outcome: str
-    planning_s: float
-    waiting_s: float
-    moving_s: float
-    reason: str = ""
-
-
-@dataclasses.dataclass(frozen=True)
 class TaskReport:
     """``/door_task/report`` (latched): how the task ended and every state attempt."""
 
@@ -142,7 +129,7 @@ class TaskReport:
     failure_reason: str
     opening: DoorOpening
     autonomy: str
-    attempts: tuple[dict, ...]  # StateAttempt fields
+    attempts: tuple[dict, ...]  # door_fsm.records.StateRecord.as_dict(): state, attempt, outcome, times, summary
     clocks: str = ""  # which clock each time is measured on (docs/CLOCKS.md)
 
 

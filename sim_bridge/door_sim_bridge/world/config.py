@@ -13,7 +13,7 @@ Units are SI throughout: metres, radians, seconds, newtons, newton-metres; colou
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from enum import Enum
 
 from door_contract.vocabulary import DoorOpening, HingeSide
@@ -324,8 +324,3 @@ class WorldConfig:
     def time_step(self) -> float:
         """Seconds per physics step."""
         return 1.0 / self.physics_rate
-
-
-def field_names(config_type: type) -> tuple[str, ...]:
-    """Names of a configuration dataclass's fields (for nodes mapping parameters onto them)."""
-    return tuple(f.name for f in fields(config_type))

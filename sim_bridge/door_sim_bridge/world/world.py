@@ -185,10 +185,6 @@ class DoorWorld:
         """Simulated seconds since the start (step count / physics rate, no drift)."""
         return self._steps * self.config.time_step
 
-    @property
-    def step_count(self) -> int:
-        return self._steps
-
     def step(self, count: int = 1) -> None:
         """Advance ``count`` physics steps."""
         for _ in range(count):
@@ -417,9 +413,6 @@ class DoorWorld:
             raise SimulationError(f"door force steps must be a positive integer, got {steps!r}")
         local = invert(self.door.link_pose(part)) @ np.append(where, 1.0)
         self._forces.append((_ExternalForce(part, vector, local[:3]), steps))
-
-    def clear_door_forces(self) -> None:
-        self._forces.clear()
 
     def _apply_external_forces(self) -> None:
         remaining = []

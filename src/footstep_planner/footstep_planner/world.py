@@ -84,10 +84,6 @@ class World:
         from footstep_planner.door import door_obstacles  # door.py builds on this module
         return cls(door_obstacles(door, sweep))
 
-    def with_obstacles(self, *extra: Obstacle) -> World:
-        """This world plus ``extra`` obstacles."""
-        return World(self.obstacles + tuple(extra))
-
     def rectangles_collide(self, x: FloatArray, y: FloatArray, yaw: FloatArray,
                            length: float | FloatArray, width: float | FloatArray,
                            margin: float | FloatArray = 0.0) -> BoolArray:
