@@ -1,4 +1,4 @@
-"""Automatic detection (seed 001 Sec. III-A) on rendered scenes."""
+"""Automatic detection ([Banerjee 2015] Sec. III-A) on rendered scenes."""
 
 from __future__ import annotations
 

@@ -72,7 +72,7 @@ def test_table_two_with_the_head_search_on_one_cell() -> None:
     automatic = results[0].automatic
     assert automatic.success and automatic.frames >= 2 and automatic.sim_time >= 0.5
     text = table_two.report(results, grid)
-    assert "TABLE II (ours" in text and "3.0 m |" in text and "Seed 001 Table II" in text
+    assert "TABLE II (ours" in text and "3.0 m |" in text and "[Banerjee 2015] Table II" in text
     assert "target ≥ 98% in every cell: met" in text
 
 

@@ -1,4 +1,4 @@
-"""Operator-aided detection from a scribble (seed 001 Sec. III-B)."""
+"""Operator-aided detection from a scribble ([Banerjee 2015] Sec. III-B)."""
 
 from __future__ import annotations
 

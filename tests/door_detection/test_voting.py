@@ -1,4 +1,4 @@
-"""The sequential vote (seed 001 Sec. III-A's 10-frame vote, stopping when the evidence suffices)."""
+"""The sequential vote ([Banerjee 2015] Sec. III-A's 10-frame vote, stopping when the evidence suffices)."""
 
 from __future__ import annotations
 

@@ -94,7 +94,7 @@ def test_push_door_is_traversed(push_run):
 
 
 def test_pull_door_is_pulled_and_blocked(pull_run):
-    """Seed 001 Fig. 2: pull with the hinge-side hand, block with the other."""
+    """[Banerjee 2015] Fig. 2: pull with the hinge-side hand, block with the other."""
     report = pull_run
     _fell_safely_or_done(report)
     states = [a["state"] for a in report["attempts"] if a["outcome"] == "succeeded"]

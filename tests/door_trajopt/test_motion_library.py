@@ -173,7 +173,7 @@ def test_push_never_swings_the_door_past_its_goal(scene, approach):
 @pytest.mark.slow
 @pytest.mark.parametrize("hinge", list(HingeSide))
 def test_pulled_door_is_blocked_by_the_other_hand_when_the_first_lets_go(hinge):
-    """Seed 001 Fig. 2: pull with the hinge-side hand, insert the other hand behind the leaf,
+    """[Banerjee 2015] Fig. 2: pull with the hinge-side hand, insert the other hand behind the leaf,
     release the handle and bring the arm to the walking posture: the door stays open on the
     blocking hand instead of closing (closer ~5 N·m at 0.35 rad)."""
     world = stand_world(DoorOpening.PULL, hinge)

@@ -1,4 +1,4 @@
-"""``door_monte_carlo``: the door task over randomised doors, as seed 001's Table I.
+"""``door_monte_carlo``: the door task over randomised doors, as [Banerjee 2015]'s Table I.
 
     python -m door_bringup.monte_carlo --trials 50 [--seed 0] [--autonomy full]
 

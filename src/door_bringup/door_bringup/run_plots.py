@@ -5,7 +5,7 @@
 * ``footsteps.png``: top view of the door estimate, the executed footstep plans and the
   base's path from /odom;
 * ``trajectories.png``: each planned motion's joints, initial guess (dashed) against the
-  optimised trajectory (solid), like seed 000's Fig. 4;
+  optimised trajectory (solid), like [Zucker 2013]'s Fig. 4;
 * ``detection.png``: the detector's last debug image (overlay of door and handle).
 """
 

@@ -1,4 +1,4 @@
-"""Door and handle detection for the humanoid door traversal (seed 001 Sec. III).
+"""Door and handle detection for the humanoid door traversal ([Banerjee 2015] Sec. III).
 
 ROS-free core (no rclpy); the node ``door_detector_node`` wraps it.  Public API:
 

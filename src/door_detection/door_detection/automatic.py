@@ -1,4 +1,4 @@
-"""Automatic door and handle detection (seed 001 Sec. III-A).
+"""Automatic door and handle detection ([Banerjee 2015] Sec. III-A).
 
 Pipeline, one frame:
 

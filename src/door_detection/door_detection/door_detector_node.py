@@ -1,7 +1,7 @@
 """ROS 2 node ``/door_detector``: door and handle estimates from the head RGB-D camera.
 
 Each frame (colour + depth + CameraInfo + the camera's pose in odom, matched by stamp)
-goes through the automatic pipeline (seed 001 Sec. III-A) — or, when the operator has
+goes through the automatic pipeline ([Banerjee 2015] Sec. III-A) — or, when the operator has
 scribbled on the handle (``/operator/scribble``), the operator-aided one (Sec. III-B),
 which then takes precedence. Estimates are moved into ``odom`` and voted over the last N
 frames (a sequential vote: confirmed as soon as enough agree precisely, whatever view of

@@ -20,7 +20,7 @@ FloatArray = np.ndarray
 
 
 class DetectionMode(Enum):
-    """Which pipeline produced an estimate (seed 001 Sec. III-A vs III-B)."""
+    """Which pipeline produced an estimate ([Banerjee 2015] Sec. III-A vs III-B)."""
 
     AUTOMATIC = "automatic"
     OPERATOR = "operator"

@@ -19,7 +19,7 @@ head camera aimed at the handle) is rendered once and both detectors run on the 
 Success (DESIGN.md): handle within 2 cm of the ground-truth grasp point and normal within
 2° of the door's.  Prints, per mode, a table of successes per distance × angle bin, the
 paper-style orientation range per distance, and the time per frame (detection only).
-Seed 001 Table II: automatic worked at 1.4–2.6 m over about −0.5..0.55 rad; operator-aided
+[Banerjee 2015] Table II: automatic worked at 1.4–2.6 m over about −0.5..0.55 rad; operator-aided
 from 1 to 4 m.
 """
 

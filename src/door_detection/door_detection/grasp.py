@@ -1,4 +1,4 @@
-"""The 3-D grasp point of a segmented handle (seed 001 Sec. III-A "handle", III-B).
+"""The 3-D grasp point of a segmented handle ([Banerjee 2015] Sec. III-A "handle", III-B).
 
 The paper gives "the handle point"; the robot needs a grasp point within 2 cm.  Depth on
 a 2-cm lever is sparse and, at 4 m, noisy (σ ≈ 5 cm per pixel for a stereo head), so the

@@ -1,4 +1,4 @@
-"""Handle segmentation by colour statistics (seed 001 Sec. III-A, used by III-B too).
+"""Handle segmentation by colour statistics ([Banerjee 2015] Sec. III-A, used by III-B too).
 
 The paper's rule (Sec. III-A, second phase): with µ and σ the mean and standard
 deviation of the door's pixels, door pixels are those within [µ − σ, µ + σ] ("marked

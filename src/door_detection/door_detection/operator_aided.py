@@ -1,4 +1,4 @@
-"""Operator-aided door detection from a scribble on the handle (seed 001 Sec. III-B).
+"""Operator-aided door detection from a scribble on the handle ([Banerjee 2015] Sec. III-B).
 
 "The operator scribbles on the door handle and based on the knowledge of where the door
 handle is, i.e. on the right or on the left of the door, points offset on the side of

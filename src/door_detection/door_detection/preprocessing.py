@@ -1,4 +1,4 @@
-"""Input checks and the image filtering of the automatic detector (seed 001 Sec. III-A).
+"""Input checks and the image filtering of the automatic detector ([Banerjee 2015] Sec. III-A).
 
 :func:`validate_frame` turns the raw inputs into a :class:`RgbdFrame` or raises
 :class:`~door_detection.errors.InputError` (:class:`DepthError` when the depth holds no

@@ -4,7 +4,7 @@ A :class:`TrialScene` is one start of the door task as the graph has it: the rob
 the sim bridge's 640×480 head camera with its 60° vertical field of view, its arms rendered)
 stands ``distance`` from the door plane, ``lateral`` aside, turned by ``yaw`` from facing
 the door (the paper's "orientation ... about the vertical where the robot is standing",
-seed 001 Sec. V); the door and its appearance are drawn over the Monte-Carlo's full ranges
+[Banerjee 2015] Sec. V); the door and its appearance are drawn over the Monte-Carlo's full ranges
 (issue 13): width 0.80–1.00 m, handle height 0.85–1.10 m, push/pull, left/right hinge, depth
 noise k ≤ 0.005 (σ = k·z², 8 cm at 4 m), colours from the palettes below (a white leaf in a
 white wall and frame included), and a room light from a random direction in front of the wall.

@@ -1,4 +1,4 @@
-"""The vote over frames, sequential (seed 001 Sec. III-A, last paragraph, made faster).
+"""The vote over frames, sequential ([Banerjee 2015] Sec. III-A, last paragraph, made faster).
 
 The paper: "The entire algorithm is repeated over a window of 10 frames ... the detection
 with the maximum occurrence is selected as the door"; waiting for 6 of 10 frames at the

@@ -1,4 +1,4 @@
-"""ROS 2 node ``/fsm_supervisor``: runs the door task's state machine (seed 001 Fig. 3).
+"""ROS 2 node ``/fsm_supervisor``: runs the door task's state machine ([Banerjee 2015] Fig. 3).
 
 Thin glue: topics become machine events, machine actions become publications and service
 calls. Deciding lives in :mod:`door_fsm.machine`, pairing answers with requests in

@@ -1,4 +1,4 @@
-"""States, phases and outcomes of the door task (seed 001, Fig. 3).
+"""States, phases and outcomes of the door task ([Banerjee 2015], Fig. 3).
 
 DETECT_DOOR → WALK_TO_DOOR → OPEN_DOOR [MOVE_TO_HANDLE → GRASP → TURN_HANDLE → PUSH or PULL
 → BLOCK (pull doors) → READY_TO_WALK] → WALK_THROUGH → DONE, plus PAUSED, MANUAL and FAILED.

@@ -32,7 +32,7 @@ class ArmSpec:
 
 @dataclass(frozen=True)
 class WalkingLimits:
-    """Footstep limits of the robot (seed 001 Sec. II: quasi-static walking)."""
+    """Footstep limits of the robot ([Banerjee 2015] Sec. II: quasi-static walking)."""
 
     max_stride: float  # m forward per step
     max_side_step: float  # m lateral per step

@@ -1,4 +1,4 @@
-"""The door as part of the kinematic chain (seed 000 Sec. III: hinge and handle are DOFs).
+"""The door as part of the kinematic chain ([Zucker 2013] Sec. III: hinge and handle are DOFs).
 
 While the hand holds the handle, robot and door form a closed chain: at every grasped
 waypoint the hand's pose must equal :meth:`DoorModel.grasp_pose` of the door's hinge

@@ -1,6 +1,6 @@
 """Plan door motions: build the problem, optimise (SQP or constrained CHOMP), time it.
 
-Multi-start as seed 001 Sec. IV: first the IK-keyed initial guess (or the cached last
+Multi-start as [Banerjee 2015] Sec. IV: first the IK-keyed initial guess (or the cached last
 feasible solution of the same motion when it starts where this one does), then guesses
 through a random middle state. The first feasible result wins.
 
@@ -63,7 +63,7 @@ class MotionPlan:
 @dataclass
 class MotionLibrary:
     options: MotionOptions = field(default_factory=MotionOptions)
-    starts: int = 3  # initial guesses tried (seed 001 Sec. IV: multiple random guesses)
+    starts: int = 3  # initial guesses tried ([Banerjee 2015] Sec. IV: multiple random guesses)
     velocity_scale: float = 0.5
     door_velocity_limits: tuple[float, float] = (0.15, 0.5)  # rad/s of hinge and handle: a door is heavy
     max_iterations: int = 120  # per initial guess (SQP QP solves / CHOMP updates)

@@ -8,7 +8,7 @@ waypoints, waypoint 0 fixed at the nominal posture, the URDF joint limits, and t
 
     c(q) = \\sum_{t=1}^{T-1} \\lVert q_t - q_{t-1} \\rVert^2,
 
-TrajOpt's joint-velocity cost (seed 001 ``Q1``; the project's VELOCITY smoothness with
+TrajOpt's joint-velocity cost ([Banerjee 2015] ``Q1``; the project's VELOCITY smoothness with
 weight 2, since that one is ``1/2 w sum``). Constraints, both 6-D TCP pose equalities
 ``(p - p*, log(R R*^T)) = 0``:
 

@@ -180,7 +180,7 @@ class TrajectoryOptimizerNode(Node):
                            door_angle=round(plan.final_door[0], 5),
                            duration_s=round(float(plan.path.times[-1]), 3) if plan.path else 0.0,
                            backend=backend or self.parameters["backend"])
-            if plan.path is not None:  # for the report's before/after plot (seed 000 Fig. 4)
+            if plan.path is not None:  # for the report's before/after plot ([Zucker 2013] Fig. 4)
                 k = len(plan.path.joint_names)
                 details.update(joint_names=list(plan.path.joint_names),
                                initial_guess=np.round(plan.initial_guess[:, :k], 4).tolist(),
