@@ -57,8 +57,13 @@ def shared_data() -> Path:
 
 
 @pytest.fixture
-def rclpy_context():
-    """An initialised rclpy context of its own, shut down after the test."""
+def rclpy_context(request):
+    """An initialised rclpy context of its own, shut down after the test.
+
+    Only for tests marked ``ros`` (they start DDS participants): ``pytest -m "not ros"`` then
+    runs the pure suite, and a test that forgets the marker fails here instead of slipping in."""
+    if request.node.get_closest_marker("ros") is None:
+        pytest.fail(f"{request.node.nodeid} uses rclpy: mark it (or its module: pytestmark = pytest.mark.ros)")
     import rclpy
 
     context = rclpy.Context()

@@ -10,6 +10,7 @@ import faulthandler
 import signal
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
+from typing import Any
 
 import rclpy
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
@@ -22,7 +23,7 @@ from door_contract.converters.diagnostics import Health, diagnostic_array
 from door_contract.errors import ParameterRangeError
 from door_contract.network import keep_discovery_local
 from door_contract.parameters import ParameterSpec, ParameterValue
-from door_contract.topics import TopicSpec, Topics
+from door_contract.topics import Topics, TopicSpec
 
 
 def _descriptor(spec: ParameterSpec) -> ParameterDescriptor:
@@ -42,11 +43,11 @@ def _descriptor(spec: ParameterSpec) -> ParameterDescriptor:
     return descriptor
 
 
-def _ros_default(value: ParameterValue):
+def _ros_default(value: ParameterValue) -> Any:
     return list(value) if isinstance(value, tuple) else value
 
 
-def declare_parameters(node: Node, specs: Iterable[ParameterSpec]) -> dict[str, ParameterValue]:
+def declare_parameters(node: Node, specs: Iterable[ParameterSpec]) -> dict[str, Any]:
     """Declare ``specs`` on ``node`` with descriptors and return their validated values.
 
     Raises :class:`ParameterRangeError` naming the parameter and its allowed range when an
@@ -108,7 +109,7 @@ class StopRequest:
     def __init__(self) -> None:
         self.signal_name: str | None = None
 
-    def __call__(self, signum: int, _frame) -> None:
+    def __call__(self, signum: int, _frame: object) -> None:
         if self.signal_name is not None:
             raise KeyboardInterrupt
         self.signal_name = signal.Signals(signum).name
@@ -157,12 +158,12 @@ def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
     return 0
 
 
-def create_contract_publisher(node: Node, topic: TopicSpec):
+def create_contract_publisher(node: Node, topic: TopicSpec) -> Any:
     """Publisher for a :class:`~door_contract.topics.TopicSpec` with its contract QoS."""
     return node.create_publisher(topic.msg_class(), topic.name, topic.qos.to_profile())
 
 
-def create_contract_subscription(node: Node, topic: TopicSpec, callback: Callable):
+def create_contract_subscription(node: Node, topic: TopicSpec, callback: Callable[[Any], None]) -> Any:
     """Subscription for a :class:`~door_contract.topics.TopicSpec` with its contract QoS."""
     return node.create_subscription(topic.msg_class(), topic.name, callback, topic.qos.to_profile())
 
@@ -173,7 +174,8 @@ class Heartbeat:
     def __init__(self, node: Node, period_s: float = 1.0) -> None:
         self._node = node
         self._publisher = create_contract_publisher(node, Topics.DIAGNOSTICS)
-        self.health, self.message, self.values = Health.OK, "ready", {}
+        self.health, self.message = Health.OK, "ready"
+        self.values: dict[str, object] = {}
         self._timer = node.create_timer(period_s, self.publish, clock=Clock(clock_type=ClockType.STEADY_TIME))
 
     def update(self, health: Health, message: str, **values: object) -> None:

@@ -85,8 +85,11 @@ def require_ordered(values: Mapping[str, Any], low: str, high: str) -> None:
                                   f"are invalid: '{low}' must not exceed '{high}'")
 
 
-def validate_all(specs: Iterable[ParameterSpec], values: Mapping[str, Any]) -> dict[str, ParameterValue]:
-    """Validate ``values`` (missing ones take defaults); unknown names are an error too."""
+def validate_all(specs: Iterable[ParameterSpec], values: Mapping[str, Any]) -> dict[str, Any]:
+    """Validate ``values`` (missing ones take defaults); unknown names are an error too.
+
+    Each value has its spec's kind (checked here), which the mapping's type cannot say: it is
+    typed ``Any`` so callers read ``params["max_stride"]`` as the float its spec declares."""
     by_name = {spec.name: spec for spec in specs}
     unknown = sorted(set(values) - set(by_name))
     if unknown:

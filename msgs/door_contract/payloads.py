@@ -15,6 +15,7 @@ from typing import Any, TypeVar, get_type_hints
 
 from door_contract.errors import ContractError, NonFiniteError
 from door_contract.json_text import parse_bounded
+from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
 
 Payload = TypeVar("Payload")
 
@@ -60,23 +61,6 @@ class PlanningOutcome:
     details: dict = dataclasses.field(default_factory=dict)
 
 
-class HingeSide(str, Enum):
-    """Side of the hinge as seen from the robot facing the door."""
-
-    LEFT = "left"
-    RIGHT = "right"
-
-    def grasp_hand(self, opening: str) -> str:
-        """The hand that opens the door.
-
-        Push doors: the hand on the handle's side (opposite the hinge). Pull doors: the robot
-        stands beyond the latch edge, outside the leaf's sweep, so the handle is on its
-        hinge side and that hand reaches it.
-        """
-        handle_side = "right" if self is HingeSide.LEFT else "left"
-        return handle_side if opening == "push" else self.value
-
-
 @dataclasses.dataclass(frozen=True)
 class DoorEstimate:
     """Published on ``/door/estimate`` (latched) by the detector; positions in ``frame_id``.
@@ -106,8 +90,8 @@ class FootstepRequest:
     """
 
     request_id: int
-    goal: str  # "stand" | "through"
-    opening: str  # "push" | "pull"
+    goal: WalkGoal
+    opening: DoorOpening
     door_angle: float = 0.0
     door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
     door: str = ""  # the approved DoorEstimate itself (JSON), so a late-joining planner has it
@@ -120,7 +104,7 @@ class MotionRequest:
 
     request_id: int
     motion: str  # approach_handle, turn_handle, push_door, pull_door, block_door, ready_to_walk
-    opening: str  # "push" | "pull"
+    opening: DoorOpening
     backend: str = ""  # "sqp" | "chomp"; empty = the node's parameter
     door_angle: float = 0.0
     door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
@@ -138,27 +122,14 @@ class PlanningCancel:
 
 
 @dataclasses.dataclass(frozen=True)
-class StateAttempt:
-    """One attempt at one FSM state (times in seconds)."""
-
-    state: str
-    attempt: int
-    outcome: str
-    planning_s: float
-    waiting_s: float
-    moving_s: float
-    reason: str = ""
-
-
-@dataclasses.dataclass(frozen=True)
 class TaskReport:
     """``/door_task/report`` (latched): how the task ended and every state attempt."""
 
     final_state: str  # DONE | FAILED
     failure_reason: str
-    opening: str
+    opening: DoorOpening
     autonomy: str
-    attempts: tuple[dict, ...]  # StateAttempt fields
+    attempts: tuple[dict, ...]  # door_fsm.records.StateRecord.as_dict(): state, attempt, outcome, times, summary
     clocks: str = ""  # which clock each time is measured on (docs/CLOCKS.md)
 
 
@@ -195,7 +166,7 @@ def decode(payload_type: type[Payload], text: str) -> Payload:
     if not isinstance(document, dict):
         raise ContractError(f"{payload_type.__name__}: expected a JSON object")
     hints = get_type_hints(payload_type)
-    fields = {f.name: f for f in dataclasses.fields(payload_type)}
+    fields = {f.name: f for f in dataclasses.fields(payload_type)}  # type: ignore[arg-type]  # Payload: any dataclass
     unknown = sorted(set(document) - set(fields))
     if unknown:
         raise ContractError(f"{payload_type.__name__}: unknown field(s) {', '.join(unknown)}")
@@ -207,8 +178,8 @@ def decode(payload_type: type[Payload], text: str) -> Payload:
         raise ContractError(f"{payload_type.__name__}: {error}") from None
 
 
-def _finite_tuple(owner: str, name: str, values: list) -> tuple:
-    items = []
+def _finite_tuple(owner: str, name: str, values: list[Any]) -> tuple[Any, ...]:
+    items: list[Any] = []
     for value in values:
         if isinstance(value, list):
             items.append(_finite_tuple(owner, name, value))
@@ -225,11 +196,13 @@ def _finite_tuple(owner: str, name: str, values: list) -> tuple:
 
 def _field_value(owner: str, name: str, hint: Any, value: Any) -> Any:
     if isinstance(hint, type) and issubclass(hint, Enum):
+        if issubclass(hint, str) and not isinstance(value, str):
+            raise ContractError(f"{owner}.{name}: expected a string, got {value!r}")
         try:
             return hint(value)
         except ValueError:
             allowed = ", ".join(str(m.value) for m in hint)
-            raise ContractError(f"{owner}.{name}: {value!r} is not one of {allowed}") from None
+            raise ContractError(f"{owner}.{name}: unknown {name} {value!r}; use one of {allowed}") from None
     if hint is float:
         if not isinstance(value, (int, float)) or isinstance(value, bool):
             raise ContractError(f"{owner}.{name}: expected a number, got {value!r}")

@@ -125,6 +125,8 @@ class PlanningWorker:
                     self._lock.wait()
                 if self._closing:
                     return
+                if self._queued is None:  # not reached: the wait above ends with a job or on closing
+                    continue
                 (request, job), self._queued = self._queued, None
                 self._running, self._running_dropped = request, ""
             finished = self._run(request, job)

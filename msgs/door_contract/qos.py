@@ -8,6 +8,12 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from enum import Enum
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:  # the contract stays ROS-free at run time: rclpy is imported where a profile is made
+    from collections.abc import Sequence
+
+    from rclpy.qos import QoSProfile
 
 
 class Reliability(str, Enum):
@@ -28,7 +34,8 @@ class QosSpec:
     reliability: Reliability = Reliability.RELIABLE
     durability: Durability = Durability.VOLATILE
 
-    def to_profile(self):  # -> rclpy.qos.QoSProfile (imported lazily: the contract stays ROS-free)
+    def to_profile(self) -> QoSProfile:
+        """The rclpy profile (rclpy imported here, lazily: the contract stays ROS-free)."""
         from rclpy.qos import DurabilityPolicy, HistoryPolicy, QoSProfile, ReliabilityPolicy
 
         return QoSProfile(
@@ -59,7 +66,7 @@ SERVICE = QosSpec(depth=1000)
 SUBSCRIPTION_DEPTH = 100
 
 
-def matching_subscription(offered, fallback):  # (Sequence[rclpy QoSProfile], QoSProfile) -> QoSProfile
+def matching_subscription(offered: Sequence[QoSProfile], fallback: QoSProfile) -> QoSProfile:
     """A subscription that receives from every publisher offering ``offered`` (what rosbag2's
     recorder and Foxglove's bridge subscribe with): best effort if any publisher is best
     effort, transient local only if every publisher is (then a latched message published

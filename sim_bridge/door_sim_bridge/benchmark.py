@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from door_robot.profile import Side
+from door_contract.vocabulary import Side
 from door_sim_bridge.execution import TrajectoryExecution
 from door_sim_bridge.world import CameraConfig, DoorPart, DoorWorld, RobotVisuals, WorldConfig
 

@@ -25,28 +25,33 @@ from std_srvs.srv import SetBool
 from trajectory_msgs.msg import JointTrajectory
 
 from door_contract.converters.camera_info import intrinsics_to_camera_info
-from door_contract.converters.footsteps import Foot, footsteps_to_path, path_to_footsteps
+from door_contract.converters.footsteps import footsteps_to_path, path_to_footsteps
 from door_contract.converters.image import array_to_image
 from door_contract.converters.joint_state import positions_to_joint_state
 from door_contract.converters.pose import matrix_to_pose, matrix_to_pose_stamped
 from door_contract.converters.trajectory import msg_to_joint_path
 from door_contract.errors import ContractError
 from door_contract.frames import Frame
-from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
-                                        create_contract_subscription, declare_parameters, run_node)
+from door_contract.node_support import (
+    Heartbeat,
+    as_parameter_error,
+    create_contract_publisher,
+    create_contract_subscription,
+    declare_parameters,
+    run_node,
+)
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, encode
 from door_contract.stamps import stamp_ns, to_time_msg
 from door_contract.topics import Services, Topics
-from door_robot.meshes import MeshUris
-from door_robot.profile import Side
+from door_contract.vocabulary import DoorOpening, Foot, HingeSide, Side
 from door_robot.errors import RobotModelError
+from door_robot.meshes import MeshUris
 from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS, NODE_NAME
 from door_sim_bridge.robot_state_publication import RobotStatePublication
-from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, DoorWorld, HingeSide, StanceConfig,
-                                   WindConfig, WorldConfig)
+from door_sim_bridge.world import CameraConfig, DoorConfig, DoorWorld, StanceConfig, WindConfig, WorldConfig
 from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT
 
 STEPS_PER_TICK = 4
@@ -108,7 +113,8 @@ class SimBridgeNode(Node):
                                f"{p['physics_rate']:.0f} Hz physics, {'real time' if p['real_time'] else 'as fast as possible'}")
 
     def _make_interfaces(self) -> None:
-        pub = lambda topic: create_contract_publisher(self, topic)
+        def pub(topic):
+            return create_contract_publisher(self, topic)
         self.publishers_by_name = {t: pub(getattr(Topics, t)) for t in (
             "CLOCK", "JOINT_STATES", "ODOM", "COLOR_IMAGE", "COLOR_INFO", "DEPTH_IMAGE", "DEPTH_INFO",
             "CAMERA_POSE", "DOOR_JOINT_STATES", "EXECUTION_OUTCOME", "FOOT_POSES")}

@@ -11,6 +11,7 @@ import yaml
 from diagnostic_msgs.msg import DiagnosticArray
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy
 from rclpy.serialization import deserialize_message, serialize_message
+from ros_helpers import executor_for, spin_until
 from rosbags.interfaces import QosDurability, QosReliability
 from std_msgs.msg import String
 
@@ -19,7 +20,6 @@ from door_bringup.bags.storage import BagError, BagWriter, Compression, StorageF
 from door_contract.node_support import create_contract_publisher
 from door_contract.qos import matching_subscription
 from door_contract.topics import Topics
-from ros_helpers import executor_for, spin_until
 
 LATCHED = offered_qos(Topics.TASK_STATE.qos.to_profile())
 VOLATILE = offered_qos(Topics.OPERATOR.qos.to_profile())

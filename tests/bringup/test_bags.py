@@ -7,13 +7,13 @@ import pytest
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
 from rclpy.serialization import deserialize_message, serialize_message
+from ros_helpers import executor_for, spin_until
 from sensor_msgs.msg import Image
 from std_msgs.msg import String
 
 from door_bringup.bags.player import PlaybackOptions, PlaybackOptionsError, playback_offsets
 from door_bringup.bags.storage import BagError, BagWriter, StorageFormat, list_topics, read_messages
 from door_contract.topics import Topics, interface_class
-from ros_helpers import executor_for, spin_until
 
 REAL_BAGS = {  # folder: {topic: count} (SOURCES.md 1b, 1c)
     "rosbag2_talker_sqlite3": {"/topic": 10, "/rosout": 10},
@@ -81,6 +81,7 @@ def _receive_all(context, node, topics_and_types, expected_count, command, works
     return received, output
 
 
+@pytest.mark.ros
 @pytest.mark.parametrize("folder", ["rosbag2_talker_sqlite3", "rosbag2_talker_mcap", "ros2bag_tools_images_sqlite3"])
 def test_player_delivers_every_message_of_real_bags(shared_data, workspace, rclpy_context, folder):
     bag = shared_data / "bags" / folder
@@ -97,6 +98,7 @@ def test_player_delivers_every_message_of_real_bags(shared_data, workspace, rclp
     node.destroy_node()
 
 
+@pytest.mark.ros
 def test_record_then_play_round_trip(workspace, rclpy_context, tmp_path):
     node = rclpy.create_node("bag_record_test", context=rclpy_context)
     publisher = node.create_publisher(String, "/door_task/operator", 10)

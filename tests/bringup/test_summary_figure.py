@@ -14,13 +14,14 @@ from door_bringup.bags.storage import BagWriter, StorageFormat
 from door_bringup.progress import ProgressPrinter, TaskProgress, phase_of, progress_line
 from door_bringup.summary_data import handle_position, read_run, signed_margin, support_polygon
 from door_bringup.summary_figure import plot_summary
-from door_contract.converters.footsteps import Foot, FootPlacement, footsteps_to_path
+from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
 from door_contract.converters.joint_state import positions_to_joint_state
-from door_contract.payloads import DoorEstimate, HingeSide, encode
+from door_contract.payloads import DoorEstimate, encode
 from door_contract.stamps import to_time_msg
 from door_contract.topics import Topics
+from door_contract.vocabulary import Foot, HingeSide, Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from door_sim_bridge.world.door import HINGE_JOINT
 
 ESTIMATE = DoorEstimate(0.0, "odom", (0.0, -0.35, 0.95), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
@@ -53,7 +54,8 @@ def _synthetic_bag(path):
     odom = Odometry()
     odom.pose.pose.position.x, odom.pose.pose.position.z, odom.pose.pose.orientation.w = -1.0, 1.02, 1.0
     with BagWriter(path, StorageFormat.SQLITE3) as writer:
-        write = lambda topic, ns, msg: writer.write(topic.name, topic.type_name, ns, serialize_message(msg))
+        def write(topic, ns, msg):
+            return writer.write(topic.name, topic.type_name, ns, serialize_message(msg))
         write(Topics.DOOR_ESTIMATE, 1, String(data=encode(ESTIMATE)))
         write(Topics.TASK_STATE, 5_000_000_000, String(data="OPEN_DOOR/PUSH"))  # bag time: wall ns
         for k in range(21):

@@ -9,11 +9,11 @@ from pathlib import Path
 
 import pytest
 import rclpy
+from ros_helpers import executor_for, node_names, spin_until
 
 from door_bringup.graph_spec import GRAPH
 from door_bringup.processes import ProcessSupervisor
 from door_bringup.workspace import WorkspaceError, find_repository_root
-from ros_helpers import executor_for, node_names, spin_until
 
 
 def test_colcon_install_has_every_executable_and_ament_index_entry(workspace):
@@ -32,6 +32,7 @@ def test_unknown_package_or_executable(workspace):
         workspace.executable("door_fsm", "no_such_executable")
 
 
+@pytest.mark.ros
 def test_every_executable_starts_its_node_and_stops_on_sigint(workspace, rclpy_context, tmp_path):
     supervisor = ProcessSupervisor(workspace, tmp_path)
     probe = rclpy.create_node("workspace_test_probe", context=rclpy_context)
@@ -59,6 +60,7 @@ def test_every_executable_starts_its_node_and_stops_on_sigint(workspace, rclpy_c
     (GRAPH[3], ["robot_profile:=nonexistent"], r"'robot_profile' = 'nonexistent'.*not found"),
     (GRAPH[4], ["robot_profile:=nonexistent"], r"'robot_profile' = 'nonexistent'.*not found"),
 ])
+@pytest.mark.ros  # each node starts (a DDS participant) before it reads its parameters
 def test_bad_parameter_stops_the_node_with_one_line(workspace, launch, overrides, message):
     command = [str(workspace.executable(launch.package, launch.executable)), "--ros-args",
                "--params-file", str(workspace.params_file(launch.node_name))]

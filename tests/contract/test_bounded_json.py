@@ -10,8 +10,17 @@ from door_contract.door_estimates import door_angle_problem, door_estimate_probl
 from door_contract.errors import ContractError
 from door_contract.json_text import MAX_PAYLOAD_DEPTH, nesting_depth, parse_bounded, read_request_id
 from door_contract.network import DISCOVERY_RANGE, keep_discovery_local
-from door_contract.payloads import (DoorEstimate, FootstepRequest, HingeSide, MotionRequest, OutcomeStatus,
-                                    PlanningOutcome, decode, encode, without_non_finite)
+from door_contract.payloads import (
+    DoorEstimate,
+    FootstepRequest,
+    MotionRequest,
+    OutcomeStatus,
+    PlanningOutcome,
+    decode,
+    encode,
+    without_non_finite,
+)
+from door_contract.vocabulary import HingeSide
 
 ESTIMATE = DoorEstimate(1.5, "odom", (1.0, 0.3, 0.9), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
                         ((1.0, -0.45, 0.0), (1.0, 0.45, 0.0), (1.0, 0.45, 2.0), (1.0, -0.45, 2.0)),

@@ -9,14 +9,19 @@ from nav_msgs.msg import Path
 from sensor_msgs.msg import CameraInfo, JointState
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
-from door_contract.converters.camera_info import (CameraIntrinsics, camera_info_to_intrinsics,
-                                                  check_matches_image, intrinsics_to_camera_info)
-from door_contract.converters.footsteps import Foot, FootPlacement, footsteps_to_path, path_to_footsteps
+from door_contract.converters.camera_info import (
+    CameraIntrinsics,
+    camera_info_to_intrinsics,
+    check_matches_image,
+    intrinsics_to_camera_info,
+)
+from door_contract.converters.footsteps import FootPlacement, footsteps_to_path, path_to_footsteps
 from door_contract.converters.joint_state import joint_state_to_positions, positions_to_joint_state
 from door_contract.converters.pose import matrix_to_pose_stamped, pose_stamped_to_matrix, pose_to_matrix
-from door_contract.geometry import planar_pose
 from door_contract.converters.trajectory import JointPath, joint_path_to_msg, msg_to_joint_path
 from door_contract.errors import NonFiniteError, ShapeError
+from door_contract.geometry import planar_pose
+from door_contract.vocabulary import Foot
 
 INTRINSICS = CameraIntrinsics(640, 480, 525.0, 520.0, 319.5, 239.5)
 

@@ -8,6 +8,7 @@ from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH
 from door_bringup.params_files import SPECS_BY_NODE
 from door_contract.errors import ParameterRangeError
 from door_contract.parameters import ParameterSpec, defaults, read_params_file, validate_all
+
 RATE = ParameterSpec("rate", 10.0, "a rate", unit="Hz", minimum=1.0, maximum=100.0)
 
 

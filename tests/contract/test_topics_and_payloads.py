@@ -3,8 +3,7 @@
 import pytest
 
 from door_contract.errors import ContractError, NonFiniteError
-from door_contract.payloads import (ExecutionKind, ExecutionOutcome, OutcomeStatus, PlanningOutcome,
-                                    decode, encode)
+from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.qos import Durability
 from door_contract.topics import Services, Topics
 

@@ -4,9 +4,16 @@ import numpy as np
 import pytest
 from scipy.spatial.transform import Rotation
 
-from door_contract.converters.transforms import (TfMessageBuffer, frame_transform_to_msg, matrix_to_transform, msg_to_frame_transform,
-                                                 tf_message, tf_message_frames, tf_messages_available,
-                                                 transform_to_matrix)
+from door_contract.converters.transforms import (
+    TfMessageBuffer,
+    frame_transform_to_msg,
+    matrix_to_transform,
+    msg_to_frame_transform,
+    tf_message,
+    tf_message_frames,
+    tf_messages_available,
+    transform_to_matrix,
+)
 from door_contract.errors import NonFiniteError, ShapeError
 from door_contract.frames import FrameTransform
 

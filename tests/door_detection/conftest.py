@@ -13,7 +13,7 @@ from collections.abc import Callable
 
 import pytest
 
-from door_detection.estimate import Side
+from door_contract.vocabulary import Side
 from door_detection.sim_scenes import Scenario, SceneFrame, render_scenario
 
 

@@ -1,14 +1,15 @@
-"""Automatic detection (seed 001 Sec. III-A) on rendered scenes."""
+"""Automatic detection ([Banerjee 2015] Sec. III-A) on rendered scenes."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-
-from door_detection.automatic import detect_automatic
-from door_detection.estimate import DetectionMode, DetectionOutcome, Side
-from door_detection.options import DetectionOptions
 from helpers_detection import angle_deg, handle_error
+
+from door_contract.vocabulary import DoorOpening, HingeSide, Side
+from door_detection.automatic import detect_automatic
+from door_detection.estimate import DetectionMode, DetectionOutcome
+from door_detection.options import DetectionOptions
 
 
 def test_sim_door_at_two_metres_straight_on(straight_on) -> None:
@@ -150,7 +151,7 @@ def test_a_faint_edge_seen_in_part_still_bounds_the_handle_search() -> None:
 
     white = (1.0, 1.0, 1.0)
     look = Appearance(white, white, (0.85, 0.7, 0.15), white, (0.15, 0.15, 0.15), (-0.2857, 0.3862, 0.8771))
-    scene = TrialScene(2.0, 0.6, -0.2654, 0.9036, 0.8805, "push", "right", 0.00476, look, 209)
+    scene = TrialScene(2.0, 0.6, -0.2654, 0.9036, 0.8805, DoorOpening.PUSH, HingeSide.RIGHT, 0.00476, look, 209)
     with DoorWorld(world_config(scene)) as world:
         world.set_joint_targets({"head_2_joint": -0.6})
         world.step(480)
@@ -170,7 +171,7 @@ def test_a_jamb_the_colour_of_the_leaf_is_cut_off_by_depth() -> None:
 
     white = (1.0, 1.0, 1.0)
     look = Appearance(white, white, (0.85, 0.7, 0.15), (0.45, 0.58, 0.72), (0.6, 0.5, 0.38), (-0.4025, -0.4411, 0.8021))
-    scene = TrialScene(1.0, 0.0, 0.1036, 0.8245, 1.0834, "push", "left", 0.0041, look, 31)
+    scene = TrialScene(1.0, 0.0, 0.1036, 0.8245, 1.0834, DoorOpening.PUSH, HingeSide.LEFT, 0.0041, look, 31)
     with DoorWorld(world_config(scene)) as world:
         frame, grasp = world.render(), world.handle_grasp_pose()
     result = detect_automatic(frame.rgb, frame.depth, frame.intrinsics)

@@ -7,9 +7,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from door_contract.vocabulary import Side
 from door_detection.automatic import detect_automatic
 from door_detection.errors import DetectionError, InputError
-from door_detection.estimate import DetectionOutcome, Side
+from door_detection.estimate import DetectionOutcome
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.preprocessing import validate_frame

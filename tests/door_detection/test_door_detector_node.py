@@ -8,6 +8,7 @@ import pytest
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point32, PolygonStamped
+from ros_helpers import executor_for, spin_until
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.converters.camera_info import intrinsics_to_camera_info
@@ -17,7 +18,6 @@ from door_contract.node_support import create_contract_publisher, create_contrac
 from door_contract.payloads import DoorEstimate, decode
 from door_contract.topics import Topics
 from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
-from ros_helpers import executor_for, spin_until
 
 pytestmark = pytest.mark.ros
 DETECTOR = next(launch for launch in GRAPH if launch.node_name == "door_detector")
@@ -105,7 +105,7 @@ def test_rendered_frames_give_a_voted_estimate_in_odom(camera, rendered, detecto
                        frame.camera_pose)
         if any(e.stamp >= 200.0 for e in camera.estimates):
             break
-        assert spin_until(camera.executor, lambda: camera.frames and camera.frames[-1] > seen, 30.0)
+        assert spin_until(camera.executor, lambda seen=seen: camera.frames and camera.frames[-1] > seen, 30.0)
     assert spin_until(camera.executor, lambda: any(e.stamp >= 200.0 for e in camera.estimates), 60.0)
     estimate = next(e for e in camera.estimates if e.stamp >= 200.0)
     assert estimate.stamp == pytest.approx(200.5) and estimate.frames_voted == 2   # sequential: 2 agree
@@ -136,7 +136,7 @@ def test_a_bad_scribble_is_refused_at_once_and_automatic_detection_goes_on(camer
             break
         seen = camera.frames[-1]
         camera.publish(first + index * 0.5, np.ascontiguousarray(frame.rgb), depth, frame.intrinsics, frame.camera_pose)
-        assert spin_until(camera.executor, lambda: camera.frames[-1] > seen, 30.0)
+        assert spin_until(camera.executor, lambda seen=seen: camera.frames[-1] > seen, 30.0)
     assert spin_until(camera.executor, lambda: any(e.stamp >= first for e in camera.estimates), 30.0)
     estimate = next(e for e in camera.estimates if e.stamp >= first)
     assert estimate.mode == "automatic"
@@ -146,7 +146,8 @@ def test_a_bad_scribble_is_refused_at_once_and_automatic_detection_goes_on(camer
 def test_frames_without_camera_info_are_reported(camera, rendered):
     frame, _ = rendered
     depth = np.where(np.isfinite(frame.depth), frame.depth, np.nan).astype(np.float32)
-    reported = lambda: any("dropped" in m and "CameraInfo" in m for m in camera.messages)
+    def reported():
+        return any("dropped" in m and "CameraInfo" in m for m in camera.messages)
     for index in range(30):  # frame after frame, a second apart, never with its CameraInfo
         stamp = 500.0 + index
         camera.pubs["COLOR_IMAGE"].publish(array_to_image(np.ascontiguousarray(frame.rgb), "rgb8", FRAME, stamp))

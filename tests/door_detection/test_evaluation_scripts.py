@@ -72,15 +72,13 @@ def test_table_two_with_the_head_search_on_one_cell() -> None:
     automatic = results[0].automatic
     assert automatic.success and automatic.frames >= 2 and automatic.sim_time >= 0.5
     text = table_two.report(results, grid)
-    assert "TABLE II (ours" in text and "3.0 m |" in text and "Seed 001 Table II" in text
+    assert "TABLE II (ours" in text and "3.0 m |" in text and "[Banerjee 2015] Table II" in text
     assert "target ≥ 98% in every cell: met" in text
 
 
 def test_a_search_without_a_door_is_judged_a_failure() -> None:
     from door_detection.search_trial import SearchOutcome
-    from door_detection.table_two import judge
-
-    from door_detection.table_two import TrialResult, failed_starts
+    from door_detection.table_two import TrialResult, failed_starts, judge
     from door_detection.trial_scenes import TrialScene
 
     result = judge(SearchOutcome(None, 12, 6, 9.0, (0.02,) * 12), np.zeros(3), np.array([-1.0, 0, 0]), 0.9)

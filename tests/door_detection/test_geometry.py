@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from door_detection.lines import VerticalLines, merge_collinear
 from door_detection.door_pairs import pair_lines
+from door_detection.lines import VerticalLines, merge_collinear
 from door_detection.options import DetectionOptions
 from door_detection.plane import Plane, depth_noise, fit_plane, ransac_line, refine_plane
 

@@ -1,12 +1,13 @@
-"""Operator-aided detection from a scribble (seed 001 Sec. III-B)."""
+"""Operator-aided detection from a scribble ([Banerjee 2015] Sec. III-B)."""
 
 from __future__ import annotations
 
 import numpy as np
-
-from door_detection.estimate import DetectionMode, DetectionOutcome, Side
-from door_detection.operator_aided import detect_from_scribble
 from helpers_detection import angle_deg, handle_error
+
+from door_contract.vocabulary import DoorOpening, HingeSide, Side
+from door_detection.estimate import DetectionMode, DetectionOutcome
+from door_detection.operator_aided import detect_from_scribble
 
 
 def test_scribble_at_three_and_a_half_metres(sim_scene) -> None:
@@ -59,7 +60,7 @@ def test_a_scribble_grown_onto_the_jamb_keeps_the_lever_only() -> None:
 
     look = Appearance((0.45, 0.52, 0.6), (0.92, 0.92, 0.88), (0.75, 0.75, 0.78), (0.7, 0.8, 0.65), (0.15, 0.15, 0.15),
                       (-0.634, 0.307, 0.710))
-    scene = TrialScene(4.0, 0.0, -0.395, 0.954, 1.065, "push", "right", 0.0025, look, 457)
+    scene = TrialScene(4.0, 0.0, -0.395, 0.954, 1.065, DoorOpening.PUSH, HingeSide.RIGHT, 0.0025, look, 457)
     with DoorWorld(world_config(scene)) as world:
         frame, grasp = world.render(), world.handle_grasp_pose()
         scribble = operator_scribble(world, np.random.default_rng(457))

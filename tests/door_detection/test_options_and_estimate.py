@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from door_contract.vocabulary import Side
 from door_detection.errors import DetectionError
-from door_detection.estimate import DetectionMode, DoorEstimate, Side
+from door_detection.estimate import DetectedDoor, DetectionMode
 from door_detection.options import DetectionOptions
 
 
@@ -40,8 +41,8 @@ def test_ordered_pairs_are_checked() -> None:
         DetectionOptions(canny_low=200, canny_high=100)
 
 
-def _estimate(normal, up=(0.0, -1.0, 0.0)) -> DoorEstimate:
-    return DoorEstimate(np.array([0.2, 0.3, 2.0]), np.array(normal), Side.LEFT, 0.9,
+def _estimate(normal, up=(0.0, -1.0, 0.0)) -> DetectedDoor:
+    return DetectedDoor(np.array([0.2, 0.3, 2.0]), np.array(normal), Side.LEFT, 0.9,
                         np.zeros((4, 3)), 1.0, DetectionMode.AUTOMATIC, 1, np.array(up))
 
 
@@ -61,7 +62,7 @@ def test_estimate_validation_and_transform() -> None:
     with pytest.raises(DetectionError, match="unit"):
         _estimate((0.0, 0.0, -2.0))
     with pytest.raises(DetectionError, match="confidence"):
-        DoorEstimate(np.zeros(3), np.array([0.0, 0.0, -1.0]), Side.LEFT, 0.9, np.zeros((4, 3)), 1.5,
+        DetectedDoor(np.zeros(3), np.array([0.0, 0.0, -1.0]), Side.LEFT, 0.9, np.zeros((4, 3)), 1.5,
                      DetectionMode.OPERATOR)
     estimate = _estimate((0.0, 0.0, -1.0))
     assert not estimate.handle_position.flags.writeable
@@ -69,4 +70,4 @@ def test_estimate_validation_and_transform() -> None:
     shift[:3, 3] = [1.0, 2.0, 3.0]
     moved = estimate.transformed(shift)
     assert np.allclose(moved.handle_position, [1.2, 2.3, 5.0]) and np.allclose(moved.normal, estimate.normal)
-    assert Side.LEFT.opposite is Side.RIGHT and Side.RIGHT.sign == 1
+    assert Side.LEFT.other is Side.RIGHT and Side.RIGHT.sign == -1

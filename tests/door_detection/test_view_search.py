@@ -7,12 +7,21 @@ import math
 
 import numpy as np
 import pytest
+from helpers_detection import angle_deg, handle_error
 
 from door_detection.errors import DetectionError
 from door_detection.estimate import DetectionMode
-from door_detection.view_search import (Neck, NeckAxis, SearchStep, View, ViewSearch, ViewSearchOptions,
-                                        head_move_time, pan_step_for, plan_views)
-from helpers_detection import angle_deg, handle_error
+from door_detection.view_search import (
+    Neck,
+    NeckAxis,
+    SearchStep,
+    View,
+    ViewSearch,
+    ViewSearchOptions,
+    head_move_time,
+    pan_step_for,
+    plan_views,
+)
 
 TALOS_LIKE = Neck(NeckAxis("pan", -1.309, 1.309, 1.0), NeckAxis("tilt", -0.262, 0.785, 1.0))
 

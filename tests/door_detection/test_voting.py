@@ -1,18 +1,19 @@
-"""The sequential vote (seed 001 Sec. III-A's 10-frame vote, stopping when the evidence suffices)."""
+"""The sequential vote ([Banerjee 2015] Sec. III-A's 10-frame vote, stopping when the evidence suffices)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from door_detection.estimate import DetectionMode, DetectionOutcome, DetectionResult, DoorEstimate, Side
+from door_contract.vocabulary import Side
+from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
 from door_detection.options import DetectionOptions
 from door_detection.voting import Voter, precision
 
 
-def _estimate(x: float, normal=(0.0, 0.0, -1.0), side: Side = Side.LEFT, y: float = 0.1) -> DoorEstimate:
+def _estimate(x: float, normal=(0.0, 0.0, -1.0), side: Side = Side.LEFT, y: float = 0.1) -> DetectedDoor:
     corners = np.array([[-0.45, 1.0, 2.0], [0.45, 1.0, 2.0], [0.45, -1.0, 2.0], [-0.45, -1.0, 2.0]])
-    return DoorEstimate(np.array([x, y, 2.0]), np.array(normal), side, 0.9, corners, 0.95,
+    return DetectedDoor(np.array([x, y, 2.0]), np.array(normal), side, 0.9, corners, 0.95,
                         DetectionMode.AUTOMATIC)
 
 

@@ -1,11 +1,12 @@
 """The ROS-free pieces under the supervisor node: graph watching, answers → events, the work
 of a proposal, the requests built from the door context."""
 
-from nav_msgs.msg import Path
 from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Path
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus
+from door_contract.vocabulary import DoorOpening
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.answers import execution_event
@@ -43,7 +44,7 @@ def test_the_work_of_a_proposal():
 
 
 def test_requests_carry_the_attempt_and_the_approved_door():
-    context = DoorContext("pull", "chomp")
+    context = DoorContext(DoorOpening.PULL, "chomp")
     request = context.motion_request(act.RequestMotion(7, "pull_door", attempt=2))
     assert (request.attempt, request.backend, request.opening, request.door_stamp) == (2, "chomp", "pull", -1.0)
     assert context.footstep_request(act.RequestFootsteps(8, "through", attempt=1)).attempt == 1

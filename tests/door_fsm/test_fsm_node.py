@@ -6,13 +6,14 @@ from pathlib import Path
 import pytest
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
+from ros_helpers import executor_for, spin_until
 from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import DoorEstimate, HingeSide, TaskReport, decode, encode
+from door_contract.payloads import DoorEstimate, TaskReport, decode, encode
 from door_contract.topics import Topics
-from ros_helpers import executor_for, spin_until
+from door_contract.vocabulary import HingeSide
 
 pytestmark = pytest.mark.ros
 FSM = next(launch for launch in GRAPH if launch.node_name == "fsm_supervisor")

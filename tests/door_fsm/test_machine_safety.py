@@ -2,6 +2,7 @@
 repeats change something, deadlines scale with the work on the right clock, falls end it."""
 
 import pytest
+from test_machine import Robot, _advance_to, _until_approval, say, t
 
 from door_fsm import actions as act
 from door_fsm import events as ev
@@ -9,7 +10,6 @@ from door_fsm.machine import DoorTaskMachine, MachineOptions, MachineOptionsErro
 from door_fsm.operator_commands import AutonomyLevel, OperatorCommand
 from door_fsm.records import Instant
 from door_fsm.states import Phase, StateOutcome, TaskState
-from test_machine import Robot, _advance_to, _until_approval, say, t
 
 
 def _executing(state=TaskState.WALK_TO_DOOR, work_s=20.0):

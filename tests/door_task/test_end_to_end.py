@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 import rclpy
 from rclpy.serialization import deserialize_message
+from ros_helpers import executor_for, spin_until
 
 from door_bringup.bags.storage import read_messages
 from door_bringup.door_task import TaskOptions, run_task
@@ -16,9 +17,8 @@ from door_bringup.graph_spec import GRAPH
 from door_contract.node_support import create_contract_subscription
 from door_contract.payloads import DoorEstimate, decode
 from door_contract.topics import Topics
-from ros_helpers import executor_for, spin_until
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.ros]  # the whole graph as processes
 
 
 @pytest.fixture(scope="module")
@@ -94,7 +94,7 @@ def test_push_door_is_traversed(push_run):
 
 
 def test_pull_door_is_pulled_and_blocked(pull_run):
-    """Seed 001 Fig. 2: pull with the hinge-side hand, block with the other."""
+    """[Banerjee 2015] Fig. 2: pull with the hinge-side hand, block with the other."""
     report = pull_run
     _fell_safely_or_done(report)
     states = [a["state"] for a in report["attempts"] if a["outcome"] == "succeeded"]

@@ -5,21 +5,25 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-
-from door_robot.profile import Side
-from door_sim_bridge.execution import TrajectoryExecution
-from door_sim_bridge.world import DoorOpening
-from door_sim_bridge.world import HingeSide as SimHingeSide
-from door_trajopt.door_model import rotation_vector
-from door_trajopt.library import Backend, MotionLibrary
-from door_trajopt.chomp import ChompSolver
-from door_trajopt.evaluation import ProblemEvaluator
-from door_trajopt.motions import (DoorStateOutOfRange, Motion, _tcp_in_grasp, anchored_to_hand, build_motion,
-                                  start_door_for)
-from door_trajopt.problem import TrajoptError
-from door_trajopt.sqp import SqpSolver
-from door_trajopt.result import Outcome
 from door_scenes import estimate_from_world, motion_setup, stand_world, talos_kinematics
+
+from door_contract.vocabulary import DoorOpening, HingeSide, grasp_hand
+from door_sim_bridge.execution import TrajectoryExecution
+from door_trajopt.chomp import ChompSolver
+from door_trajopt.door_model import rotation_vector
+from door_trajopt.evaluation import ProblemEvaluator
+from door_trajopt.library import Backend, MotionLibrary
+from door_trajopt.motions import (
+    DoorStateOutOfRange,
+    Motion,
+    _tcp_in_grasp,
+    anchored_to_hand,
+    build_motion,
+    start_door_for,
+)
+from door_trajopt.problem import TrajoptError
+from door_trajopt.result import Outcome
+from door_trajopt.sqp import SqpSolver
 
 
 @pytest.fixture(scope="module")
@@ -131,7 +135,7 @@ def test_planned_turn_and_push_open_the_simulated_door(backend):
     try:
         for motion in (Motion.APPROACH_HANDLE, "grasp", Motion.TURN_HANDLE, Motion.PUSH_DOOR):
             if motion == "grasp":
-                assert world.grasp(Side(estimate.hinge_side.grasp_hand("push")), True).success
+                assert world.grasp(grasp_hand(estimate.hinge_side, DoorOpening.PUSH), True).success
                 continue
             setup = motion_setup(world, kinematics, estimate,
                                  door_angles=start_door_for(motion, door_angle, library.options))
@@ -167,15 +171,15 @@ def test_push_never_swings_the_door_past_its_goal(scene, approach):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("hinge", list(SimHingeSide))
+@pytest.mark.parametrize("hinge", list(HingeSide))
 def test_pulled_door_is_blocked_by_the_other_hand_when_the_first_lets_go(hinge):
-    """Seed 001 Fig. 2: pull with the hinge-side hand, insert the other hand behind the leaf,
+    """[Banerjee 2015] Fig. 2: pull with the hinge-side hand, insert the other hand behind the leaf,
     release the handle and bring the arm to the walking posture: the door stays open on the
     blocking hand instead of closing (closer ~5 N·m at 0.35 rad)."""
     world = stand_world(DoorOpening.PULL, hinge)
     kinematics, library = talos_kinematics(), MotionLibrary()
     estimate = estimate_from_world(world)
-    pulling = Side(estimate.hinge_side.grasp_hand("pull"))
+    pulling = grasp_hand(estimate.hinge_side, DoorOpening.PULL)
     door_angle = 0.0
     try:
         for motion in (Motion.APPROACH_HANDLE, "grasp", Motion.TURN_HANDLE, Motion.PULL_DOOR, Motion.BLOCK_DOOR,

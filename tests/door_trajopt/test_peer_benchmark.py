@@ -9,7 +9,14 @@ from door_robot.profile import load_profile
 from door_trajopt import benchmark_peers
 from door_trajopt.chomp import ChompOptions, ChompSolver
 from door_trajopt.evaluation import ProblemEvaluator
-from door_trajopt.peer_problems import ARC_POSES, door_arc_problem, peer_problems, reach_problem, score, trajectory_problem
+from door_trajopt.peer_problems import (
+    ARC_POSES,
+    door_arc_problem,
+    peer_problems,
+    reach_problem,
+    score,
+    trajectory_problem,
+)
 from door_trajopt.sqp import SqpOptions, SqpSolver
 
 

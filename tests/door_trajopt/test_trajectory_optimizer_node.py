@@ -8,20 +8,22 @@ from dataclasses import replace
 import pytest
 import rclpy
 from nav_msgs.msg import Odometry
+from ros_helpers import executor_for, spin_until
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.converters.trajectory import msg_to_joint_path
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import (DoorEstimate, HingeSide, MotionRequest, OutcomeStatus, PlanningOutcome,
-                                    decode, encode)
+from door_contract.payloads import DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Topics
+from door_contract.vocabulary import HingeSide
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_trajopt.library import MotionLibrary
-from ros_helpers import executor_for, spin_until
+
+pytestmark = pytest.mark.ros  # starts rclpy nodes / DDS participants
 
 OPTIMIZER = next(launch for launch in GRAPH if launch.node_name == "trajectory_optimizer")
 # base at (-0.5, -0.12) facing +x, door plane x = 0, left hinge: the footstep planner's stand pose
@@ -73,13 +75,13 @@ class Robot:
         for attempt in range(20):
             rid = request.request_id * 100 + attempt
             self.request_pub.publish(String(data=encode(replace(request, request_id=rid))))
-            assert spin_until(self.executor, lambda: any(o.request_id == rid for o in self.outcomes), 60.0)
+            assert spin_until(self.executor, lambda rid=rid: any(o.request_id == rid for o in self.outcomes), 60.0)
             outcome = next(o for o in self.outcomes if o.request_id == rid)
             in_flight = "yet" in outcome.reason or "not received" in outcome.reason
             if not (retry_not_ready and in_flight):
                 return outcome
             ticks = self.ticks  # let two more states go out before asking again
-            assert spin_until(self.executor, lambda: self.ticks >= ticks + 2, 10.0)
+            assert spin_until(self.executor, lambda ticks=ticks: self.ticks >= ticks + 2, 10.0)
         raise AssertionError("the optimizer never had its inputs")
 
 

@@ -144,7 +144,7 @@ def test_jacobian_outside_declared_pattern_is_detected() -> None:
 
 
 def test_seed000_sized_problem_matches_paper_size() -> None:
-    """Seed 000 Sec. III: n = 104, m = 9, k = 181 (46 + 55 + 80)."""
+    """[Zucker 2013] Sec. III: n = 104, m = 9, k = 181 (46 + 55 + 80)."""
     problem = seed000_sized_case().problem
     sizes = {c.name: c.size for c in problem.constraints}
     assert problem.n_free == 104 and problem.n_dof == 9

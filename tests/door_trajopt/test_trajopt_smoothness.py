@@ -1,4 +1,4 @@
-"""Smoothness metric of seed 000 eq. (1)-(3): structure, values and banded solves."""
+"""Smoothness metric of [Zucker 2013] eq. (1)-(3): structure, values and banded solves."""
 
 from __future__ import annotations
 
@@ -33,7 +33,7 @@ def make_problem(end_fixed: bool, spec: SmoothnessSpec) -> TrajectoryProblem:
 
 
 def explicit_sum_of_squares(problem: TrajectoryProblem, trajectory: np.ndarray) -> float:
-    """Seed 000 eq. (1) written out with loops, ghost waypoints for ``at_rest``."""
+    """[Zucker 2013] eq. (1) written out with loops, ghost waypoints for ``at_rest``."""
     spec = problem.smoothness
     padded = trajectory
     if spec.derivative is Derivative.ACCELERATION and spec.at_rest:
@@ -113,7 +113,7 @@ def test_gradient_matches_finite_differences() -> None:
 
 
 def test_unconstrained_minimum_is_straight_line_in_configuration_space() -> None:
-    """Seed 000 eq. (3): ``-A^{-1} b`` joins the fixed endpoints by a line."""
+    """[Zucker 2013] eq. (3): ``-A^{-1} b`` joins the fixed endpoints by a line."""
     problem = make_problem(True, SmoothnessSpec(Derivative.ACCELERATION, False))
     metric = SmoothnessMetric.for_problem(problem)
     trajectory = problem.full_trajectory(metric.unconstrained_minimum())

@@ -7,8 +7,9 @@ from dataclasses import replace
 
 import numpy as np
 
+from door_contract.vocabulary import DoorOpening, HingeSide
 from door_robot.profile import load_profile
-from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide
+from footstep_planner.door import DoorGeometry
 from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.geometry import wrap_angle
 from footstep_planner.options import FootstepPlannerOptions
@@ -94,7 +95,7 @@ def relative_step(support: Footstep, step: Footstep) -> tuple[float, float, floa
     cos_yaw, sin_yaw = math.cos(support.yaw), math.sin(support.yaw)
     forward = cos_yaw * dx + sin_yaw * dy
     left = -sin_yaw * dx + cos_yaw * dy
-    return forward, step.foot.side_sign * left, wrap_angle(step.yaw - support.yaw)
+    return forward, step.foot.sign * left, wrap_angle(step.yaw - support.yaw)
 
 
 def alternates(plan: FootstepPlan) -> bool:

@@ -7,16 +7,21 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from footstep_scenes import profile_options
 
-from footstep_planner.actions import (CLEARANCE_STEP, CLOSING_STEP, ActionSet, StepAction, cleared_turn,
-                                      is_kinematically_valid)
-from footstep_planner.footstep import Foot
+from door_contract.vocabulary import Foot
+from footstep_planner.actions import (
+    CLEARANCE_STEP,
+    CLOSING_STEP,
+    ActionSet,
+    StepAction,
+    cleared_turn,
+    is_kinematically_valid,
+)
 from footstep_planner.geometry import rectangle_corners
 from footstep_planner.obstacles import Obstacle
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.world import World
-
-from footstep_scenes import profile_options
 
 OPTIONS = FootstepPlannerOptions()
 ACTIONS = ActionSet.from_options(OPTIONS)
@@ -36,7 +41,7 @@ def test_action_set_has_forward_backward_side_and_turning_steps() -> None:
 def test_every_action_lands_on_its_own_side_within_the_limits(swing: Foot) -> None:
     table = ACTIONS.tables[swing]
     forward, left, yaw = table.foot.T
-    lateral = swing.side_sign * left
+    lateral = swing.sign * left
     assert np.all(forward <= OPTIONS.max_stride + 1e-9)
     assert np.all(forward >= -OPTIONS.max_backward_step - 1e-9)
     assert np.all(lateral >= OPTIONS.min_foot_separation - 1e-9)  # no leg crossing

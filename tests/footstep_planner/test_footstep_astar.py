@@ -6,18 +6,25 @@ import math
 from dataclasses import replace
 
 import pytest
+from footstep_scenes import (
+    DEFAULT_OPTIONS,
+    alternates,
+    collisions_along,
+    door_facing_robot,
+    in_front_of,
+    kinematic_violations,
+    relative_step,
+    stance_at,
+)
 
+from door_contract.vocabulary import DoorOpening, Foot, HingeSide
 from footstep_planner.astar import FootstepPlanner, plan_footsteps
-from footstep_planner.door import DoorOpening, HingeSide
-from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.goals import stand_pose_for_opening, through_door_pose
 from footstep_planner.obstacles import Obstacle
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import PlanOutcome, PlanResult
 from footstep_planner.world import World
-
-from footstep_scenes import (DEFAULT_OPTIONS, alternates, collisions_along, door_facing_robot,
-                             in_front_of, kinematic_violations, relative_step, stance_at)
 
 OPEN_SPACE = FootstepPlanner(World())
 

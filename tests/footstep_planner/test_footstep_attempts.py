@@ -7,18 +7,17 @@ from __future__ import annotations
 from dataclasses import replace
 
 import pytest
+from footstep_scenes import door_facing_robot, profile_options
 
+from door_contract.vocabulary import DoorOpening
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.attempts import MAX_ATTEMPT, options_for_attempt
-from footstep_planner.door import DoorOpening
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.goals import pull_passage_waypoints, stand_pose_for_opening
 from footstep_planner.legs import plan_legs
 from footstep_planner.plan import PlanOutcome
 from footstep_planner.world import World
-
-from footstep_scenes import door_facing_robot, profile_options
 
 OPTIONS = profile_options(heuristic_weight=1.5, max_expansions=1000)
 

@@ -6,13 +6,12 @@ import math
 
 import numpy as np
 import pytest
+from footstep_scenes import door_facing_robot
 
-from footstep_planner.door import (DoorGeometry, DoorOpening, HingeSide, door_obstacles,
-                                   sweep_obstacle)
+from door_contract.vocabulary import DoorOpening, HingeSide
+from footstep_planner.door import DoorGeometry, door_obstacles, sweep_obstacle
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.world import World
-
-from footstep_scenes import door_facing_robot
 
 
 def _names(door: DoorGeometry) -> list[str]:

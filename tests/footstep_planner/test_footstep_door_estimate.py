@@ -10,17 +10,16 @@ import math
 import numpy as np
 import pytest
 
-from door_contract.payloads import DoorEstimate, HingeSide
+from door_contract.payloads import DoorEstimate
+from door_contract.vocabulary import DoorOpening, HingeSide
 from door_sim_bridge.world import DoorConfig, DoorWorld, WorldConfig
-from door_sim_bridge.world import HingeSide as SimHingeSide
-from footstep_planner.door import DoorOpening
-from footstep_planner.requests import door_geometry_from_estimate
 from footstep_planner.goals import through_door_pose
+from footstep_planner.requests import door_geometry_from_estimate
 
 
 def _estimate(world: DoorWorld, with_edges: bool = True) -> DoorEstimate:
     truth = world.door_ground_truth()
-    hinge = HingeSide.LEFT if world.config.door.hinge_side is SimHingeSide.LEFT else HingeSide.RIGHT
+    hinge = world.config.door.hinge_side
     corners = tuple(tuple(c) for c in truth.corners) if with_edges else ((math.nan,) * 3,) * 4
     return DoorEstimate(world.time, "odom", tuple(truth.handle_grasp_pose[:3, 3]), tuple(truth.normal), hinge,
                         truth.width if with_edges else math.nan, corners, 1.0, 10, "automatic")
@@ -28,7 +27,7 @@ def _estimate(world: DoorWorld, with_edges: bool = True) -> DoorEstimate:
 
 @pytest.mark.parametrize("width, hinge", [(0.86, "left"), (0.914, "right"), (0.96, "left")])
 def test_the_opening_is_where_the_simulated_door_is(width: float, hinge: str) -> None:
-    with DoorWorld(WorldConfig(door=DoorConfig(width=width, hinge_side=SimHingeSide(hinge)))) as world:
+    with DoorWorld(WorldConfig(door=DoorConfig(width=width, hinge_side=HingeSide(hinge)))) as world:
         estimate = _estimate(world)
         truth = world.door_ground_truth()
     door = door_geometry_from_estimate(estimate, DoorOpening.PUSH, 0.0, handle_standoff=0.06)

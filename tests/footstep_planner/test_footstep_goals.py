@@ -3,24 +3,22 @@
 from __future__ import annotations
 
 import math
-
-import pytest
-
 from dataclasses import replace
 
+import pytest
+from footstep_scenes import collisions_along, door_facing_robot, in_front_of, kinematic_violations
+
+from door_contract.vocabulary import DoorOpening, HingeSide
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorOpening, HingeSide, wall_obstacles
+from footstep_planner.door import wall_obstacles
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.footprint import FootprintChecker
-from footstep_planner.footstep import Stance
-from footstep_planner.footstep import Pose2D
+from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.goals import pull_passage_waypoints, replan_needed, stand_pose_for_opening, through_door_pose
 from footstep_planner.legs import plan_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import PlanOutcome
 from footstep_planner.world import World
-
-from footstep_scenes import collisions_along, door_facing_robot, in_front_of, kinematic_violations
 
 OPTIONS = FootstepPlannerOptions()
 

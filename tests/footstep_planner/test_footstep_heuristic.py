@@ -7,17 +7,17 @@ import math
 
 import numpy as np
 import pytest
+from footstep_scenes import profile_options
 
+from door_contract.vocabulary import Foot
 from footstep_planner.actions import ActionSet, StepAction
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.geometry import wrap_angle
 from footstep_planner.heuristic import FootstepHeuristic, is_goal_centre
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.pruning import LegPruning
 from footstep_planner.world import World
-
-from footstep_scenes import profile_options
 
 OPTION_SETS = {"defaults": FootstepPlannerOptions(heuristic_weight=1.0), "talos": profile_options(heuristic_weight=1.0),
                "talos, 30 % shorter": profile_options(0.7, heuristic_weight=1.0)}

@@ -12,15 +12,14 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 
 import pytest
+from footstep_scenes import door_facing_robot, profile_options
 
+from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorOpening, HingeSide
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.legs import plan_legs
 from footstep_planner.plan import PlanResult
-from footstep_planner.requests import GoalSettings, WalkGoal, options_for_problem, walk_problem
-
-from footstep_scenes import door_facing_robot, profile_options
+from footstep_planner.requests import GoalSettings, options_for_problem, walk_problem
 
 BUSY_LOOPS = 2 * (os.cpu_count() or 2)
 """Busy processes beside the planner: two per core."""

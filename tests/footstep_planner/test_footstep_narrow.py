@@ -8,9 +8,11 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from footstep_scenes import SHRINKS, collisions_along, door_facing_robot, kinematic_violations, profile_options
 
+from door_contract.vocabulary import DoorOpening, HingeSide
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorOpening, HingeSide, wall_obstacles
+from footstep_planner.door import wall_obstacles
 from footstep_planner.footprint import FootprintChecker
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.geometry import wrap_angle
@@ -18,8 +20,6 @@ from footstep_planner.goals import through_door_pose
 from footstep_planner.legs import plan_legs
 from footstep_planner.narrow import PASSAGE_CLEARANCE, SIDEWAYS, passage_legs, passage_turn
 from footstep_planner.world import World
-
-from footstep_scenes import SHRINKS, collisions_along, door_facing_robot, kinematic_violations, profile_options
 
 OPTIONS = profile_options()
 BODY_ACROSS = 2.0 * (OPTIONS.body_half_width + OPTIONS.body_margin)  # 0.84 m for TALOS

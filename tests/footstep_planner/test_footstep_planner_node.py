@@ -9,16 +9,18 @@ import pytest
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
 from nav_msgs.msg import Odometry
+from ros_helpers import executor_for, spin_until
 from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
-from door_contract.converters.footsteps import Foot, path_to_footsteps
+from door_contract.converters.footsteps import path_to_footsteps
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import (DoorEstimate, FootstepRequest, HingeSide, OutcomeStatus, PlanningOutcome,
-                                    decode, encode)
+from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Topics
-from ros_helpers import executor_for, spin_until
+from door_contract.vocabulary import Foot, HingeSide
+
+pytestmark = pytest.mark.ros  # starts rclpy nodes / DDS participants
 
 PLANNER = next(launch for launch in GRAPH if launch.node_name == "footstep_planner")
 # Wall at x = 0, robot at x = -4 facing +x; left hinge at y = +0.457, handle near y = -0.39.

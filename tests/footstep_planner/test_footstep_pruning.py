@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+from footstep_scenes import kinematic_violations, profile_options
 
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.errors import FootstepPlannerError
@@ -16,8 +17,6 @@ from footstep_planner.obstacles import Obstacle
 from footstep_planner.plan import PlanOutcome
 from footstep_planner.pruning import LegPruning
 from footstep_planner.world import World
-
-from footstep_scenes import kinematic_violations, profile_options
 
 OPTIONS = profile_options()
 

@@ -5,13 +5,12 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from footstep_scenes import door_facing_robot
 
-from footstep_planner.door import DoorOpening
+from door_contract.vocabulary import DoorOpening
 from footstep_planner.geometry import Bounds
 from footstep_planner.reachability import ReachabilityQuery, flood_fill, may_reach
 from footstep_planner.world import World
-
-from footstep_scenes import door_facing_robot
 
 
 def _query(goal: tuple[float, float], hop: float = 0.15) -> ReachabilityQuery:

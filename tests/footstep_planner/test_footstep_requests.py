@@ -5,17 +5,22 @@ profile's limits, as they are and 30 % shorter."""
 from __future__ import annotations
 
 import pytest
+from footstep_scenes import SHRINKS, collisions_along, door_facing_robot, kinematic_violations, profile_options
 
+from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
 from door_robot.profile import load_profile
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorOpening, HingeSide
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.legs import plan_legs
-from footstep_planner.requests import (PULL_LEG_NAMES, GoalSettings, WalkGoal, options_for_problem, passage_angle,
-                                       start_stance, walk_problem)
+from footstep_planner.requests import (
+    PULL_LEG_NAMES,
+    GoalSettings,
+    options_for_problem,
+    passage_angle,
+    start_stance,
+    walk_problem,
+)
 from footstep_planner.robot_limits import STEP_LIMIT_MARGIN, options_for_walking
-
-from footstep_scenes import SHRINKS, collisions_along, door_facing_robot, kinematic_violations, profile_options
 
 SETTINGS = GoalSettings()
 

@@ -7,7 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from door_contract.vocabulary import Foot
+from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.plan import FootstepPlan, PlanOutcome, PlanResult
 
 

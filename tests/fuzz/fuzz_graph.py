@@ -16,16 +16,17 @@ import numpy as np
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus
 from nav_msgs.msg import Path as PathMsg
+from ros_helpers import executor_for, spin_until
 from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
-from door_contract.converters.footsteps import Foot, FootPlacement, path_to_footsteps
+from door_contract.converters.footsteps import FootPlacement, path_to_footsteps
 from door_contract.converters.joint_state import joint_state_to_positions
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import DoorEstimate, ExecutionOutcome, HingeSide, PlanningOutcome, decode
+from door_contract.payloads import DoorEstimate, ExecutionOutcome, PlanningOutcome, decode
 from door_contract.qos import SERVICE
 from door_contract.topics import Services, Topics
-from ros_helpers import executor_for, spin_until
+from door_contract.vocabulary import Foot, HingeSide
 
 # Wall at x = 0, the sim robot 3 m in front facing +x; a left-hinged DRC door.
 ESTIMATE = DoorEstimate(0.0, "odom", (-0.06, -0.39, 0.91), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
@@ -93,7 +94,8 @@ class Observer:
         self.node.create_timer(0.25, self._beat)
 
     def _subscribe(self) -> None:
-        sub = lambda topic, callback: create_contract_subscription(self.node, topic, callback)
+        def sub(topic, callback):
+            return create_contract_subscription(self.node, topic, callback)
         sub(Topics.JOINT_STATES, lambda m: self.joints.update(joint_state_to_positions(m)))
         sub(Topics.ODOM, lambda m: setattr(self, "base", np.array([m.pose.pose.position.x, m.pose.pose.position.y,
                                                                    m.pose.pose.position.z])))

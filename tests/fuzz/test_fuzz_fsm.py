@@ -7,16 +7,15 @@ import signal
 
 import numpy as np
 import pytest
+from fuzz_graph import ESTIMATE, STILL_BASE, Observer, start_node, stop_node
 from std_msgs.msg import String
 
 from door_contract.converters.footsteps import footsteps_to_path
 from door_contract.converters.trajectory import JointPath, joint_path_to_msg
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import (FootstepRequest, MotionRequest, OutcomeStatus, PlanningOutcome, decode,
-                                    encode)
+from door_contract.payloads import FootstepRequest, MotionRequest, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
 from door_contract.topics import Topics
-from fuzz_graph import STILL_BASE, ESTIMATE, Observer, start_node, stop_node
 
 pytestmark = pytest.mark.ros
 
@@ -34,7 +33,8 @@ class FakePlanners:
         self.node = rclpy.create_node(PLANNER, context=context)
         self.observer, self.steps, self.stamps = observer, steps, UniqueStamps()
         self.requests = []
-        pub = lambda topic: create_contract_publisher(self.node, topic)
+        def pub(topic):
+            return create_contract_publisher(self.node, topic)
         self.pubs = {"footsteps": (pub(Topics.FOOTSTEP_PROPOSAL), pub(Topics.FOOTSTEP_OUTCOME)),
                      "motion": (pub(Topics.MOTION_PROPOSAL), pub(Topics.MOTION_OUTCOME))}
         create_contract_subscription(self.node, Topics.FOOTSTEP_REQUEST, self._on_footsteps)

@@ -6,9 +6,9 @@ import json
 from dataclasses import replace
 
 import pytest
+from fuzz_graph import ESTIMATE, STILL_BASE, Observer, start_node, stop_node
 
 from door_contract.payloads import FootstepRequest, MotionRequest, OutcomeStatus, PlanningCancel, encode
-from fuzz_graph import STILL_BASE, ESTIMATE, Observer, start_node, stop_node
 
 pytestmark = pytest.mark.ros
 

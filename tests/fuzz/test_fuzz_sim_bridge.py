@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+from fuzz_graph import STILL_BASE, Observer, start_node, stop_node
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path as PathMsg
 from std_srvs.srv import SetBool
@@ -15,7 +16,6 @@ from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
 from door_contract.converters.trajectory import JointPath, joint_path_to_msg
 from door_contract.payloads import OutcomeStatus
-from fuzz_graph import STILL_BASE, Observer, start_node, stop_node
 
 pytestmark = pytest.mark.ros
 

@@ -5,9 +5,10 @@ import numpy as np
 import pybullet
 import pytest
 
+from door_contract.vocabulary import Side
 from door_robot.errors import RobotModelError
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 
 
 @pytest.fixture(scope="module")

@@ -11,8 +11,8 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side
 from door_sim_bridge.execution import ExecutionResult, TrajectoryExecution
 from door_sim_bridge.world import DoorPart, DoorWorld, StanceConfig
 

@@ -6,6 +6,7 @@ import subprocess
 import numpy as np
 import pytest
 import rclpy
+from ros_helpers import executor_for, spin_until
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.converters.joint_state import joint_state_to_positions
@@ -13,7 +14,6 @@ from door_contract.converters.trajectory import JointPath, joint_path_to_msg
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import ExecutionOutcome, OutcomeStatus, decode
 from door_contract.topics import Topics
-from ros_helpers import executor_for, spin_until
 
 pytestmark = pytest.mark.ros
 BRIDGE = next(launch for launch in GRAPH if launch.node_name == "sim_bridge")
@@ -68,7 +68,8 @@ def test_streams_arrive(listener):
     assert image.encoding == "rgb8" and image.width == 640 and image.height == 480
     assert listener.got["depth"][-1].encoding == "32FC1"
     assert "arm_right_4_joint" in listener.got["joints"][-1]
-    clock = lambda: [c.clock.sec + c.clock.nanosec * 1e-9 for c in listener.got["clock"]]
+    def clock():
+        return [c.clock.sec + c.clock.nanosec * 1e-9 for c in listener.got["clock"]]
     # /clock is best-effort depth 1: wait for a second reading (under load the first may be all there is)
     assert spin_until(listener.executor, lambda: clock()[-1] > clock()[0], 30.0), clock()
 

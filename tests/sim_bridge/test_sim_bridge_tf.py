@@ -8,6 +8,7 @@ import xml.etree.ElementTree as ElementTree
 import numpy as np
 import pytest
 import rclpy
+from ros_helpers import executor_for, spin_until
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.converters.pose import pose_stamped_to_matrix
@@ -19,7 +20,6 @@ from door_contract.topics import Topics
 from door_robot.meshes import PACKAGE_URI, resolve_package_uri
 from door_robot.profile import load_profile
 from door_sim_bridge.tf_tree import compose, urdf_joints
-from ros_helpers import executor_for, spin_until
 
 BRIDGE = next(launch for launch in GRAPH if launch.node_name == "sim_bridge")
 pytestmark = pytest.mark.ros

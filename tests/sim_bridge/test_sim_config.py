@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
+from door_contract.vocabulary import DoorOpening, HingeSide
 from door_sim_bridge.errors import SimulationError
-from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, ExecutionConfig, HingeSide,
-                                   StanceConfig, WindConfig, WorldConfig)
-from door_sim_bridge.world.door import DoorGeometry, door_urdf
+from door_sim_bridge.world import CameraConfig, DoorConfig, ExecutionConfig, StanceConfig, WindConfig, WorldConfig
+from door_sim_bridge.world.door import DoorLayout, door_urdf
 
 
 def test_defaults_are_the_drc_door_and_valid():
@@ -67,7 +67,7 @@ def test_any_scene_colours_are_accepted_and_only_unrenderable_ones_refused():
 @pytest.mark.parametrize("hinge_side", list(HingeSide))
 def test_door_geometry_follows_the_convention(opening, hinge_side):
     door = DoorConfig(opening=opening, hinge_side=hinge_side)
-    geometry = DoorGeometry.from_config(door)
+    geometry = DoorLayout.from_config(door)
     side = hinge_side.sign
     assert geometry.hinge_origin[1] == pytest.approx(side * door.width / 2)
     assert geometry.hinge_origin[0] == pytest.approx(door.thickness if opening is DoorOpening.PUSH else 0.0)

@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
+from door_contract.vocabulary import DoorOpening, HingeSide
 from door_sim_bridge.errors import SimulationError
-from door_sim_bridge.world import (DoorConfig, DoorOpening, DoorPart, DoorWorld, EventKind, HingeSide,
-                                   WindConfig, WorldConfig)
+from door_sim_bridge.world import DoorConfig, DoorPart, DoorWorld, EventKind, WindConfig, WorldConfig
 
 PUSH_FORCE = 100.0  # N
 SECOND = 240  # physics steps at the default rate

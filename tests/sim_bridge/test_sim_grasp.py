@@ -5,8 +5,9 @@ import pytest
 from sim_scenes import GRASP_STANCE, reach_handle, solve_ik, turned_grasp_target
 
 from door_contract.payloads import OutcomeStatus
+from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from door_sim_bridge.execution import TrajectoryExecution
 from door_sim_bridge.world import DoorWorld, EventKind, RobotMode, WorldConfig
 from door_sim_bridge.world.transforms import translation

@@ -7,12 +7,11 @@ placement and standing are tested in test_sim_walking.py.
 import numpy as np
 import pytest
 
-from door_contract.converters.footsteps import Foot
+from door_contract.geometry import planar_pose
+from door_contract.vocabulary import Foot, Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.world import DoorWorld, RobotMode, StanceConfig, WorldConfig
-from door_contract.geometry import planar_pose
 
 STANCE = StanceConfig(distance=2.0, lateral_offset=0.35, yaw=0.4)
 

@@ -3,12 +3,12 @@ stance (for the kinematic walk: the step in progress is finished); both report S
 
 import numpy as np
 import pytest
+from test_sim_execution import ARM, _start_over, _walk_plan
 
 from door_contract.converters.trajectory import JointPath
 from door_contract.payloads import OutcomeStatus
 from door_sim_bridge.execution import ExecutionPhase, FootstepExecution, TrajectoryExecution
 from door_sim_bridge.world import DoorWorld, RobotMode, WorldConfig
-from test_sim_execution import ARM, _start_over, _walk_plan
 
 
 @pytest.fixture(scope="module")

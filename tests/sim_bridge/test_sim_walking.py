@@ -13,8 +13,9 @@ import math
 import numpy as np
 import pytest
 
-from door_contract.converters.footsteps import Foot, FootPlacement
+from door_contract.converters.footsteps import FootPlacement
 from door_contract.payloads import OutcomeStatus
+from door_contract.vocabulary import Foot
 from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
 from door_sim_bridge.world import DoorWorld, EventKind, StanceConfig, WorldConfig
 

@@ -10,12 +10,12 @@ import numpy as np
 import pytest
 
 from door_contract.frames import Frame
+from door_contract.geometry import planar_pose
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.robot_description import loaded_urdf
 from door_sim_bridge.tf_tree import RobotTfTree, compose, world_tf_tree
 from door_sim_bridge.urdf_joints import joint_transforms, root_link, urdf_joints
 from door_sim_bridge.world import DoorWorld, RobotMode, StanceConfig, WorldConfig
-from door_contract.geometry import planar_pose
 
 STANCE = StanceConfig(distance=2.0, lateral_offset=0.3, yaw=0.4)
 

@@ -10,17 +10,18 @@ from pathlib import Path
 
 import pytest
 import rclpy
+from foxglove_client import FoxgloveClient
 from rcl_interfaces.msg import Log
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from rclpy.serialization import deserialize_message
+from ros_helpers import executor_for, spin_until
 from std_msgs.msg import String
 
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import DoorEstimate, HingeSide, encode
+from door_contract.payloads import DoorEstimate, encode
 from door_contract.topics import Topics
+from door_contract.vocabulary import HingeSide
 from door_robot.meshes import resolve_package_uri
-from foxglove_client import FoxgloveClient
-from ros_helpers import executor_for, spin_until
 
 pytestmark = pytest.mark.ros
 ESTIMATE = DoorEstimate(0.0, "odom", (1.2, -0.35, 0.95), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
@@ -110,7 +111,8 @@ def test_client_decodes_the_approval_request_and_its_approval_moves_the_fsm(grap
         "cdr", "std_msgs/msg/String", "ros2msg")
     assert channel["schema"].strip() == "string data"
     client.subscribe(1, topic)
-    requests = lambda: [t for t in (deserialize_message(b, String).data for b in client.messages.get(1, [])) if t]
+    def requests():
+        return [t for t in (deserialize_message(b, String).data for b in client.messages.get(1, [])) if t]
     assert _both(detector, client, requests, 60.0), logs[1].read_text()
     request = requests()[0]
     assert request.startswith("DETECT_DOOR #")
@@ -118,11 +120,13 @@ def test_client_decodes_the_approval_request_and_its_approval_moves_the_fsm(grap
 
     client.advertise(7, Topics.OPERATOR.name)
     client.publish_json(7, {"data": f"approve {request_id}"})
-    moved = lambda: "WALK_TO_DOOR" in detector.states
-    refused = lambda: any(f"approve {request_id}" in w for w in detector.fsm_warnings)
+    def moved():
+        return "WALK_TO_DOOR" in detector.states
+    def refused():
+        return any(f"approve {request_id}" in w for w in detector.fsm_warnings)
     assert _both(detector, client, lambda: moved() or refused(), 60.0), logs[1].read_text()
     assert moved() and not refused(), detector.fsm_warnings  # the FSM answers ids only (a bare approve is refused)
-    assert f"'approve" in logs[0].read_text()  # the bridge logged what the client sent
+    assert "'approve" in logs[0].read_text()  # the bridge logged what the client sent
 
 
 def test_channels_outside_the_allowed_topics_are_refused_with_a_status(graph):

@@ -6,8 +6,14 @@ import json
 import pytest
 
 from door_contract.topics import Topics
-from door_viz.foxglove_core import (ClientCommandError, EventKind, SchemaLibrary, ServerEvents,
-                                    client_channel_refusal, client_string)
+from door_viz.foxglove_core import (
+    ClientCommandError,
+    EventKind,
+    SchemaLibrary,
+    ServerEvents,
+    client_channel_refusal,
+    client_string,
+)
 from door_viz.layout import LAYOUT_FILE, layout_text, panel_configs
 
 

@@ -9,7 +9,9 @@ import numpy as np
 import pytest
 import rclpy
 from nav_msgs.msg import Odometry
+from ros_helpers import executor_for, spin_until
 from std_msgs.msg import String
+from test_proposal_shapes import ESTIMATE, STEPS
 
 from door_contract.converters.footsteps import footsteps_to_path
 from door_contract.converters.joint_state import positions_to_joint_state
@@ -17,10 +19,9 @@ from door_contract.converters.trajectory import JointPath, joint_path_to_msg
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import MotionRequest, encode
 from door_contract.topics import Topics
+from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
-from ros_helpers import executor_for, spin_until
-from test_proposal_shapes import ESTIMATE, STEPS
+from door_robot.profile import load_profile
 
 pytestmark = pytest.mark.ros
 
@@ -55,7 +56,8 @@ def test_picture_of_the_proposals(markers_node, rclpy_context):
     pub[Topics.FOOTSTEP_PROPOSAL.name].publish(footsteps_to_path(STEPS, 2.0))
     path = JointPath(np.array([0.0, 1.0]), ("arm_right_4_joint",), np.array([[-0.5], [-1.5]]))
     pub[Topics.MOTION_PROPOSAL.name].publish(joint_path_to_msg(path))
-    namespaces = lambda: {m.ns for m in arrays[-1].markers[1:]} if arrays else set()
+    def namespaces():
+        return {m.ns for m in arrays[-1].markers[1:]} if arrays else set()
 
     def streaming_until_drawn() -> bool:  # the robot's state streams on, as from the sim bridge
         pub[Topics.JOINT_STATES.name].publish(positions_to_joint_state(posture, stamp=1.0))

@@ -6,14 +6,15 @@ import math
 import numpy as np
 import pytest
 
-from door_contract.converters.footsteps import Foot, FootPlacement
+from door_contract.converters.footsteps import FootPlacement
 from door_contract.converters.markers import shapes_to_marker_array
 from door_contract.converters.trajectory import JointPath
 from door_contract.errors import NonFiniteError
 from door_contract.marker_shapes import MarkerKind, MarkerShape
-from door_contract.payloads import DoorEstimate, HingeSide
+from door_contract.payloads import DoorEstimate
+from door_contract.vocabulary import Foot, HingeSide, Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from door_viz.hand_paths import hand_paths
 from door_viz.picture import ProposalPicture, SoleSize
 from door_viz.proposals import footstep_shapes, leaf_axes, swing_shapes

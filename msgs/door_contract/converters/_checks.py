@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import numpy as np
+import numpy.typing as npt
 
 from door_contract.errors import NonFiniteError
 
 
-def require_finite(values: np.ndarray, what: str) -> np.ndarray:
+def require_finite(values: npt.ArrayLike, what: str) -> np.ndarray:
     """``values`` as a float array, or :class:`NonFiniteError` naming ``what``."""
     array = np.asarray(values, dtype=float)
     if not np.all(np.isfinite(array)):

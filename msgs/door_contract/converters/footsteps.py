@@ -10,22 +10,17 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from enum import Enum
 
 import numpy as np
 from nav_msgs.msg import Path
 
 from door_contract.converters._checks import require_finite
 from door_contract.converters.pose import matrix_to_pose_stamped, pose_to_matrix
-from door_contract.geometry import planar_pose, yaw_of
 from door_contract.errors import ShapeError
 from door_contract.frames import Frame
+from door_contract.geometry import planar_pose, yaw_of
 from door_contract.stamps import Stamp, to_time_msg
-
-
-class Foot(str, Enum):
-    LEFT = "left"
-    RIGHT = "right"
+from door_contract.vocabulary import Foot
 
 
 @dataclass(frozen=True)

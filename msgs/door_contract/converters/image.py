@@ -9,6 +9,7 @@ Data are wrapped with ``np.frombuffer`` and written with ``ndarray.tobytes()`` (
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 from sensor_msgs.msg import Image
@@ -57,7 +58,7 @@ def image_to_array(msg: Image) -> np.ndarray:
     if data.size != msg.step * msg.height:
         raise ShapeError(f"data has {data.size} bytes, step × height = {msg.step * msg.height}")
     rows = data.reshape(msg.height, msg.step)[:, :row_bytes]
-    byte_order = ">" if msg.is_bigendian else "<"
+    byte_order: Literal[">", "<"] = ">" if msg.is_bigendian else "<"
     pixels = np.ascontiguousarray(rows).view(fmt.dtype.newbyteorder(byte_order))
     shape = (msg.height, msg.width, fmt.channels) if fmt.channels > 1 else (msg.height, msg.width)
     return pixels.reshape(shape).astype(fmt.dtype, copy=False)

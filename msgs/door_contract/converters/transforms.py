@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import importlib.util
 from collections.abc import Iterable
+from typing import Any
 
 import numpy as np
 from geometry_msgs.msg import Pose, Transform, TransformStamped
@@ -65,7 +66,7 @@ def _checked_stack(frames: list[FrameTransform]) -> tuple[np.ndarray, list]:
     return matrices, (Rotation.from_matrix(matrices[:, :3, :3]).as_quat().tolist() if frames else [])
 
 
-def _write(msg: TransformStamped, time_msg, matrix: np.ndarray, quaternion: list) -> None:
+def _write(msg: TransformStamped, time_msg: Any, matrix: np.ndarray, quaternion: list) -> None:
     """Stamp and numbers of one TransformStamped, set in place (frames unchanged)."""
     msg.header.stamp = time_msg
     translation, rotation = msg.transform.translation, msg.transform.rotation
@@ -73,7 +74,7 @@ def _write(msg: TransformStamped, time_msg, matrix: np.ndarray, quaternion: list
     rotation.x, rotation.y, rotation.z, rotation.w = quaternion
 
 
-def tf_message(frames: Iterable[FrameTransform], stamp: Stamp):  # -> tf2_msgs.msg.TFMessage
+def tf_message(frames: Iterable[FrameTransform], stamp: Stamp) -> Any:  # tf2_msgs.msg.TFMessage, imported lazily
     """One TFMessage holding every transform of ``frames``, all stamped ``stamp`` (s).
 
     One finiteness check and one rotation → quaternion conversion for the whole stack; each
@@ -99,10 +100,10 @@ class TfMessageBuffer:
     reusing it is safe). A fresh message when the frames change."""
 
     def __init__(self) -> None:
-        self._message = None
+        self._message: Any = None  # tf2_msgs.msg.TFMessage
         self._frames: tuple[tuple[str, str], ...] = ()
 
-    def message(self, frames: Iterable[FrameTransform], stamp: Stamp):  # -> tf2_msgs.msg.TFMessage
+    def message(self, frames: Iterable[FrameTransform], stamp: Stamp) -> Any:  # tf2_msgs.msg.TFMessage
         frames = list(frames)
         names = tuple((frame.parent, frame.child) for frame in frames)
         if self._message is None or names != self._frames:
@@ -115,6 +116,6 @@ class TfMessageBuffer:
         return self._message
 
 
-def tf_message_frames(msg) -> list[FrameTransform]:
+def tf_message_frames(msg: Any) -> list[FrameTransform]:
     """The transforms of a TFMessage (``msg.transforms``)."""
     return [msg_to_frame_transform(transform) for transform in msg.transforms]

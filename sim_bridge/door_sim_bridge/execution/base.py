@@ -137,7 +137,7 @@ class Execution(ABC):
         events = self.world.events_since(self._event_cursor)
         return next((event for event in events if event.kind is EventKind.GRASP_SLIPPED), None)
 
-    def _on_start(self) -> None:
+    def _on_start(self) -> None:  # noqa: B027  (an optional hook: most executions need no start action)
         """Hook called at the first command."""
 
     def _on_stop(self) -> None:

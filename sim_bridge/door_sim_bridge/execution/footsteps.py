@@ -32,12 +32,13 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from door_contract.converters.footsteps import Foot, FootPlacement, foot_of_index
+from door_contract.converters.footsteps import FootPlacement, foot_of_index
+from door_contract.geometry import planar_pose, yaw_of
 from door_contract.payloads import OutcomeStatus
+from door_contract.vocabulary import Foot
 from door_robot.profile import WalkingLimits
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution.base import Execution
-from door_contract.geometry import planar_pose, yaw_of
 from door_sim_bridge.world.world import DoorWorld
 
 LIMIT_TOLERANCE = 0.005  # m or rad: planners round to their grids; a few mm more is still a safe step

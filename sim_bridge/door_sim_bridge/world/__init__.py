@@ -7,16 +7,22 @@ doors open towards +x (details in :mod:`door_sim_bridge.world.door`). Start with
 """
 
 from door_sim_bridge.world.camera import CameraFrame
-from door_sim_bridge.world.config import (CameraConfig, DoorConfig, DoorOpening, ExecutionConfig,
-                                          HingeSide, RobotMode, RobotVisuals, StanceConfig, WindConfig,
-                                          WorldConfig)
-from door_sim_bridge.world.door import (HANDLE_JOINT, HINGE_JOINT, DoorGroundTruth, DoorPart,
-                                        DoorState)
+from door_sim_bridge.world.config import (
+                                          CameraConfig,
+                                          DoorConfig,
+                                          ExecutionConfig,
+                                          RobotMode,
+                                          RobotVisuals,
+                                          StanceConfig,
+                                          WindConfig,
+                                          WorldConfig,
+)
+from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT, DoorGroundTruth, DoorPart, DoorState
 from door_sim_bridge.world.grasp import GraspResult
 from door_sim_bridge.world.robot import JointLimit, JointStates
 from door_sim_bridge.world.world import DoorWorld, EventKind, SimEvent
 
 __all__ = ["HANDLE_JOINT", "HINGE_JOINT", "CameraConfig", "CameraFrame", "DoorConfig", "DoorGroundTruth",
-           "DoorOpening", "DoorPart", "DoorState", "DoorWorld", "EventKind", "ExecutionConfig",
-           "GraspResult", "HingeSide", "JointLimit", "RobotMode", "JointStates", "RobotVisuals", "SimEvent",
+           "DoorPart", "DoorState", "DoorWorld", "EventKind", "ExecutionConfig",
+           "GraspResult", "JointLimit", "RobotMode", "JointStates", "RobotVisuals", "SimEvent",
            "StanceConfig", "WindConfig", "WorldConfig"]

@@ -13,11 +13,13 @@ Units are SI throughout: metres, radians, seconds, newtons, newton-metres; colou
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from enum import Enum
 
+from door_contract.vocabulary import DoorOpening, HingeSide
 from door_sim_bridge.errors import SimulationError
-from door_sim_bridge.validation import check_ranges, require as _require
+from door_sim_bridge.validation import check_ranges
+from door_sim_bridge.validation import require as _require
 from door_sim_bridge.walking.gait import GaitOptions
 from door_sim_bridge.walking.stabilizer import StabilizerOptions
 
@@ -30,25 +32,6 @@ Direction = tuple[float, float, float]
 DEFAULT_LIGHT_DIRECTION: Direction = (-50.0, 30.0, 100.0)
 """PyBullet TinyRenderer's own light for a z-up world (towards the light, odom axes): passing
 it explicitly renders exactly what the renderer did unasked."""
-
-
-class DoorOpening(str, Enum):
-    """Which way the leaf swings, seen from the robot's starting side (x < 0)."""
-
-    PUSH = "push"  # away from the robot, towards +x
-    PULL = "pull"  # towards the robot, towards -x
-
-
-class HingeSide(str, Enum):
-    """Side of the hinges as seen from the robot facing the door (+x): LEFT is +y."""
-
-    LEFT = "left"
-    RIGHT = "right"
-
-    @property
-    def sign(self) -> float:
-        """+1 when the hinge edge is at +y, -1 at -y."""
-        return 1.0 if self is HingeSide.LEFT else -1.0
 
 
 class RobotMode(str, Enum):
@@ -341,8 +324,3 @@ class WorldConfig:
     def time_step(self) -> float:
         """Seconds per physics step."""
         return 1.0 / self.physics_rate
-
-
-def field_names(config_type: type) -> tuple[str, ...]:
-    """Names of a configuration dataclass's fields (for nodes mapping parameters onto them)."""
-    return tuple(f.name for f in fields(config_type))

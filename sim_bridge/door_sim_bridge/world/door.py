@@ -34,8 +34,9 @@ from pathlib import Path
 import numpy as np
 import pybullet
 
+from door_contract.vocabulary import DoorOpening
 from door_sim_bridge.world.client import PhysicsClient
-from door_sim_bridge.world.config import DoorConfig, DoorOpening, WindConfig
+from door_sim_bridge.world.config import DoorConfig, WindConfig
 from door_sim_bridge.world.transforms import pose_matrix
 
 WALL_THICKNESS = 0.12  # m
@@ -85,7 +86,7 @@ class DoorGroundTruth:
 
 
 @dataclass(frozen=True, eq=False)
-class DoorGeometry:
+class DoorLayout:
     """Fixed placements of the door's joints and shapes, derived from a :class:`DoorConfig`.
 
     Leaf link frame: on the hinge axis at floor height, world-aligned when closed. Handle link
@@ -102,7 +103,7 @@ class DoorGeometry:
     face_corners: np.ndarray  # (4, 3) robot-side face corners in the leaf frame
 
     @classmethod
-    def from_config(cls, door: DoorConfig) -> DoorGeometry:
+    def from_config(cls, door: DoorConfig) -> DoorLayout:
         side = door.hinge_side.sign
         swing = 1.0 if door.opening is DoorOpening.PUSH else -1.0
         axis_x = door.thickness if door.opening is DoorOpening.PUSH else 0.0
@@ -198,7 +199,7 @@ def _scene_link(robot: ET.Element, door: DoorConfig) -> None:
         _box_element(link, "collision", centre, size)
 
 
-def _leaf_link(robot: ET.Element, door: DoorConfig, geometry: DoorGeometry) -> None:
+def _leaf_link(robot: ET.Element, door: DoorConfig, geometry: DoorLayout) -> None:
     link = ET.SubElement(robot, "link", name="leaf")
     size = (door.thickness, door.width, door.height)
     _inertial(link, door.mass, geometry.leaf_centre, size)
@@ -206,7 +207,7 @@ def _leaf_link(robot: ET.Element, door: DoorConfig, geometry: DoorGeometry) -> N
     _box_element(link, "collision", tuple(geometry.leaf_centre), size)
 
 
-def _handle_link(robot: ET.Element, door: DoorConfig, geometry: DoorGeometry) -> None:
+def _handle_link(robot: ET.Element, door: DoorConfig, geometry: DoorLayout) -> None:
     link = ET.SubElement(robot, "link", name="handle")
     lever_centre = geometry.lever_direction * door.lever_length / 2.0
     lever_size = (LEVER_SECTION, door.lever_length + LEVER_SECTION, LEVER_SECTION)
@@ -232,7 +233,7 @@ def _revolute(robot: ET.Element, name: str, parent: str, child: str, origin: np.
 
 def door_urdf(door: DoorConfig) -> str:
     """URDF text of the scene, leaf and handle for ``door``."""
-    geometry = DoorGeometry.from_config(door)
+    geometry = DoorLayout.from_config(door)
     robot = ET.Element("robot", name="door_scene")
     _scene_link(robot, door)
     _leaf_link(robot, door, geometry)
@@ -274,7 +275,7 @@ class SimDoor:
     def __init__(self, client: PhysicsClient, config: DoorConfig, wind_phase: float) -> None:
         self._client = client
         self.config = config
-        self.geometry = DoorGeometry.from_config(config)
+        self.geometry = DoorLayout.from_config(config)
         self._wind_phase = wind_phase
         self.body = self._load(client, config)
         joints = {client.getJointInfo(self.body, j)[1].decode(): j

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import pybullet
 
-from door_robot.profile import Side
+from door_contract.vocabulary import Side
 from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.door import DoorPart, SimDoor
 from door_sim_bridge.world.robot import SimRobot

@@ -27,7 +27,8 @@ from pathlib import Path
 import numpy as np
 import pybullet
 
-from door_robot.profile import RobotProfile, Side
+from door_contract.vocabulary import Side
+from door_robot.profile import RobotProfile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import RobotVisuals

@@ -30,22 +30,22 @@ from types import TracebackType
 import numpy as np
 import pybullet
 
-from door_contract.converters.footsteps import Foot, FootPlacement
+from door_contract.converters.footsteps import FootPlacement
+from door_contract.geometry import planar_pose, yaw_of
+from door_contract.vocabulary import Foot, Side
 from door_robot.locations import cmeel_share_dir
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.world.balance import BalanceLoop
 from door_sim_bridge.world.camera import CameraFrame, HeadCamera, optical_offset
 from door_sim_bridge.world.client import PhysicsClient
-from door_sim_bridge.world.balance import BalanceLoop
 from door_sim_bridge.world.config import RobotMode, StanceConfig, WorldConfig
-from door_sim_bridge.world.hardware import make_floor
-from door_sim_bridge.world.robot_urdf import sole_placement_link
 from door_sim_bridge.world.door import DoorGroundTruth, DoorPart, DoorState, LatchEvent, SimDoor
 from door_sim_bridge.world.grasp import GraspController, GraspResult
+from door_sim_bridge.world.hardware import make_floor
 from door_sim_bridge.world.robot import JointLimit, JointStates, SimRobot
-from door_contract.geometry import planar_pose, yaw_of
+from door_sim_bridge.world.robot_urdf import sole_placement_link
 from door_sim_bridge.world.transforms import invert, is_rigid
-
 
 SOLE_CLEARANCE = 0.0005  # m between the lowest sole and the floor when the robot is placed
 
@@ -184,10 +184,6 @@ class DoorWorld:
     def time(self) -> float:
         """Simulated seconds since the start (step count / physics rate, no drift)."""
         return self._steps * self.config.time_step
-
-    @property
-    def step_count(self) -> int:
-        return self._steps
 
     def step(self, count: int = 1) -> None:
         """Advance ``count`` physics steps."""
@@ -347,8 +343,7 @@ class DoorWorld:
         placements = {}
         for side, link in self.profile.feet.items():
             pose = self.robot.link_pose(link)
-            foot = Foot(side.value)
-            placements[foot] = FootPlacement(foot, float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
+            placements[side] = FootPlacement(side, float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
         return placements
 
     def _feet_midpoint(self) -> np.ndarray:
@@ -418,9 +413,6 @@ class DoorWorld:
             raise SimulationError(f"door force steps must be a positive integer, got {steps!r}")
         local = invert(self.door.link_pose(part)) @ np.append(where, 1.0)
         self._forces.append((_ExternalForce(part, vector, local[:3]), steps))
-
-    def clear_door_forces(self) -> None:
-        self._forces.clear()
 
     def _apply_external_forces(self) -> None:
         remaining = []

@@ -9,7 +9,7 @@ Starts the sim bridge, the four nodes and the proposal markers as separate proce
 into a rosbag2 bag, plays the operator (``auto`` approves every request on
 /door_task/approval_request; ``console`` leaves it to you: ``./ros2 run door_fsm
 operator_console`` in another terminal), waits for the FSM's TaskReport, prints a table in
-the form of seed 001's Table I, stops the graph with SIGINT, and writes the run folder:
+the form of [Banerjee 2015]'s Table I, stops the graph with SIGINT, and writes the run folder:
 ``bag/``, ``logs/``, ``report.md``, ``report.json`` and plots (``summary.png`` first). While it
 runs it prints the FSM's states and a progress line; ``--foxglove`` also serves the graph on a
 Foxglove WebSocket (ws://127.0.0.1:8765; layout in ``src/door_viz/layouts/door_task.json``).
@@ -22,7 +22,7 @@ import json
 import sys
 import time
 from dataclasses import dataclass
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 
 import rclpy
@@ -223,7 +223,7 @@ def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
 def main(argv: list[str] | None = None) -> int:
     options, run_dir = parse_options(argv)
     workspace = Workspace(repository_root())
-    stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%SZ")
     run_dir = run_dir or workspace.root / "runs" / f"{stamp}_{options.opening}_{options.hinge}"
     run_dir.mkdir(parents=True, exist_ok=True)
     print(f"door task: {options.opening} door hinged {options.hinge}, autonomy {options.autonomy}, "

@@ -1,4 +1,4 @@
-"""``door_monte_carlo``: the door task over randomised doors, as seed 001's Table I.
+"""``door_monte_carlo``: the door task over randomised doors, as [Banerjee 2015]'s Table I.
 
     python -m door_bringup.monte_carlo --trials 50 [--seed 0] [--autonomy full]
 
@@ -17,7 +17,7 @@ import sys
 import time
 from collections import Counter
 from dataclasses import asdict, replace
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 
 import numpy as np
 
@@ -55,7 +55,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--timeout", type=float, default=600.0, help="per trial (s)")
     args = parser.parse_args(argv)
     workspace = Workspace(repository_root())
-    stamp = datetime.now(timezone.utc).strftime("%Y%m%dT%H%M%SZ")
+    stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%SZ")
     out = workspace.root / "runs" / f"monte_carlo_{stamp}"
     out.mkdir(parents=True, exist_ok=True)
     rng = np.random.default_rng(args.seed)

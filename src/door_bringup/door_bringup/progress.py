@@ -2,7 +2,7 @@
 
     [progress]   41 s | sim 27.5 s | 3/4 OPEN_DOOR/TURN_HANDLE | base (-0.62, -0.15) m | door 0.12 rad
 
-Phases are seed 001's four (Table I): DETECT_DOOR, WALK_TO_DOOR, OPEN_DOOR (with its
+Phases are [Banerjee 2015]'s four (Table I): DETECT_DOOR, WALK_TO_DOOR, OPEN_DOOR (with its
 sub-state), WALK_THROUGH. On a terminal the line is rewritten in place; in a log file it is
 printed every ``log_period_s``.
 """

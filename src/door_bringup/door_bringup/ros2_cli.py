@@ -44,9 +44,8 @@ def _topic(args: list[str]) -> int:
     import rclpy
 
     from door_bringup.bags.player import qos_for
-    from door_contract.topics import interface_class
-
     from door_contract.network import keep_discovery_local
+    from door_contract.topics import interface_class
 
     verb, rest = args[0], args[1:]
     count = 1

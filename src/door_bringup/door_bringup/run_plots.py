@@ -5,7 +5,7 @@
 * ``footsteps.png``: top view of the door estimate, the executed footstep plans and the
   base's path from /odom;
 * ``trajectories.png``: each planned motion's joints, initial guess (dashed) against the
-  optimised trajectory (solid), like seed 000's Fig. 4;
+  optimised trajectory (solid), like [Zucker 2013]'s Fig. 4;
 * ``detection.png``: the detector's last debug image (overlay of door and handle).
 """
 
@@ -23,9 +23,10 @@ from rclpy.serialization import deserialize_message  # noqa: E402
 
 from door_bringup.bags.storage import read_messages  # noqa: E402
 from door_bringup.summary_figure import plot_summary  # noqa: E402
-from door_contract.converters.footsteps import Foot, path_to_footsteps  # noqa: E402
+from door_contract.converters.footsteps import path_to_footsteps  # noqa: E402
 from door_contract.converters.image import image_to_array  # noqa: E402
 from door_contract.topics import Topics  # noqa: E402
+from door_contract.vocabulary import Foot
 
 
 def _messages(bag: Path, topic) -> list:

@@ -20,7 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from door_bringup.summary_data import RunSeries, read_run  # noqa: E402
-from door_contract.converters.footsteps import Foot  # noqa: E402
+from door_contract.vocabulary import Foot
 from door_viz.proposals import leaf_axes  # noqa: E402
 
 GRASP_DISTANCE_M = 0.02

@@ -1,4 +1,4 @@
-"""Tables in the form of seed 001's Table I: per phase, success, planning time, moving time."""
+"""Tables in the form of [Banerjee 2015]'s Table I: per phase, success, planning time, moving time."""
 
 from __future__ import annotations
 

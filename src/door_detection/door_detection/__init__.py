@@ -1,4 +1,4 @@
-"""Door and handle detection for the humanoid door traversal (seed 001 Sec. III).
+"""Door and handle detection for the humanoid door traversal ([Banerjee 2015] Sec. III).
 
 ROS-free core (no rclpy); the node ``door_detector_node`` wraps it.  Public API:
 
@@ -7,7 +7,7 @@ ROS-free core (no rclpy); the node ``door_detector_node`` wraps it.  Public API:
 * :func:`door_detection.operator_aided.detect_from_scribble` (rgb, depth, intrinsics,
   scribble, options, hinge_side, up) → ``DetectionResult`` — Sec. III-B;
 * :class:`door_detection.voting.Voter` — the N-frame vote;
-* :class:`door_detection.estimate.DoorEstimate` (camera optical frame; ``handle_pose()``,
+* :class:`door_detection.estimate.DetectedDoor` (camera optical frame; ``handle_pose()``,
   ``transformed()``), :class:`~door_detection.estimate.DetectionOutcome`,
   :class:`~door_detection.options.DetectionOptions`.
 

@@ -1,4 +1,4 @@
-"""Automatic door and handle detection (seed 001 Sec. III-A).
+"""Automatic door and handle detection ([Banerjee 2015] Sec. III-A).
 
 Pipeline, one frame:
 
@@ -33,19 +33,18 @@ import cv2
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
+from door_contract.vocabulary import Side
 from door_detection.door_pairs import DoorCandidate, corners_3d, door_surface_points, find_doors
 from door_detection.edges import edge_width, refine_door_edges
 from door_detection.errors import InputError
-from door_detection.estimate import (DetectionMode, DetectionOutcome, DetectionResult, DoorEstimate,
-                                     Side)
+from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
 from door_detection.grasp import locate_grasp
 from door_detection.handle import HandleBlob, find_handle, touches_border
 from door_detection.jambs import trim_jambs
 from door_detection.lines import VerticalLines, detect_vertical_lines
 from door_detection.options import DetectionOptions
 from door_detection.plane import refine_plane
-from door_detection.preprocessing import DepthError, Frame, validate_frame
-
+from door_detection.preprocessing import DepthError, RgbdFrame, validate_frame
 
 UNEXPECTED_ERRORS = (ArithmeticError, IndexError, ValueError, np.linalg.LinAlgError, cv2.error)
 """Failures inside the pipeline that no input check foresaw: reported, never raised."""
@@ -121,8 +120,8 @@ def detect_automatic(rgb: np.ndarray, depth: np.ndarray, intrinsics: CameraIntri
                            clock.stages)
 
 
-def _detect(frame: Frame, options: DetectionOptions, hinge_side: Side | None,
-            clock: StageClock) -> tuple[DoorEstimate, int]:
+def _detect(frame: RgbdFrame, options: DetectionOptions, hinge_side: Side | None,
+            clock: StageClock) -> tuple[DetectedDoor, int]:
     found = _find_door_and_handle(frame, options, hinge_side, clock)
     candidate = found.candidate
     lines = refine_door_edges(frame.rgb, found.lines, candidate.left, candidate.right)
@@ -132,7 +131,7 @@ def _detect(frame: Frame, options: DetectionOptions, hinge_side: Side | None,
     plane = plane.facing(np.zeros(3))
     lines = trim_jambs(lines, candidate, plane, frame.depth, frame.intrinsics, options.frame_width_max)
     up = _door_up(candidate)
-    hinge = found.blob.side.opposite
+    hinge = found.blob.side.other
     handle = locate_grasp(found.blob.cols, found.blob.rows, frame.depth, frame.intrinsics, plane, up,
                           hinge, options)
     if handle is None:
@@ -141,7 +140,7 @@ def _detect(frame: Frame, options: DetectionOptions, hinge_side: Side | None,
     corners = corners_3d(candidate, lines, plane, frame.intrinsics)
     clock.mark("plane+grasp")
     confidence = float(np.clip(min(candidate.plane_fraction, fraction), 0.0, 1.0))
-    estimate = DoorEstimate(handle, plane.normal, hinge, edge_width(corners), corners, confidence,
+    estimate = DetectedDoor(handle, plane.normal, hinge, edge_width(corners), corners, confidence,
                             DetectionMode.AUTOMATIC, 1, up)
     return estimate, found.candidates
 
@@ -153,7 +152,7 @@ def _door_up(candidate: DoorCandidate) -> np.ndarray:
     return -mean / np.linalg.norm(mean) if mean[1] > 0 else mean / np.linalg.norm(mean)
 
 
-def _find_door_and_handle(frame: Frame, options: DetectionOptions, hinge_side: Side | None,
+def _find_door_and_handle(frame: RgbdFrame, options: DetectionOptions, hinge_side: Side | None,
                           clock: StageClock) -> _Found:
     """Lines → door candidates → the first (best-scored) candidate with a handle."""
     lines = detect_vertical_lines(frame.rgb, options)

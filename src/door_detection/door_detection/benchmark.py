@@ -2,7 +2,7 @@
 
 ``python -m door_detection.benchmark [--repeats N]``
 
-Seed 001 Table I: door detection took 20.5 s (pull door) / 19.6 s (push door) for the
+[Banerjee 2015] Table I: door detection took 20.5 s (pull door) / 19.6 s (push door) for the
 10-frame vote, i.e. ~2 s per frame; the project's target (DESIGN.md) is ≤ 50 ms per
 1024×544 frame on one core.  OpenCV is limited to one thread here; the frames are rendered
 once (rendering is the simulator's cost, not the detector's) and each detector runs
@@ -28,7 +28,7 @@ from door_detection.progress import ProgressBar
 from door_detection.sim_scenes import Scenario, SceneFrame, render_scenario
 
 PAPER_SECONDS_PER_VOTE = 20.5
-"""Seed 001 Table I, pull door: detection time for the 10-frame vote (s)."""
+"""[Banerjee 2015] Table I, pull door: detection time for the 10-frame vote (s)."""
 PAPER_FRAMES_PER_VOTE = 10
 TARGET_SECONDS_PER_FRAME = 0.050
 SCENARIOS = (Scenario(1.0, 0.0), Scenario(2.0, 0.0), Scenario(2.0, 0.4, depth_noise=0.003),

@@ -1,7 +1,7 @@
 """ROS 2 node ``/door_detector``: door and handle estimates from the head RGB-D camera.
 
 Each frame (colour + depth + CameraInfo + the camera's pose in odom, matched by stamp)
-goes through the automatic pipeline (seed 001 Sec. III-A) — or, when the operator has
+goes through the automatic pipeline ([Banerjee 2015] Sec. III-A) — or, when the operator has
 scribbled on the handle (``/operator/scribble``), the operator-aided one (Sec. III-B),
 which then takes precedence. Estimates are moved into ``odom`` and voted over the last N
 frames (a sequential vote: confirmed as soon as enough agree precisely, whatever view of
@@ -32,18 +32,23 @@ from door_contract.converters.image import array_to_image, depth_to_metres, imag
 from door_contract.converters.pose import matrix_to_pose_stamped, pose_to_matrix
 from door_contract.errors import ContractError
 from door_contract.frames import Frame
-from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
-                                        create_contract_subscription,
-                                        declare_parameters, run_node)
+from door_contract.node_support import (
+    Heartbeat,
+    as_parameter_error,
+    create_contract_publisher,
+    create_contract_subscription,
+    declare_parameters,
+    run_node,
+)
 from door_contract.parameters import require_ordered
 from door_contract.payloads import encode
 from door_contract.stamps import from_time_msg
 from door_contract.topics import Topics
 from door_detection.automatic import detect_automatic
+from door_detection.errors import DetectionError
 from door_detection.markers import door_markers
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
-from door_detection.errors import DetectionError
 from door_detection.parameters import DETECTOR_PARAMETERS, NODE_NAME
 from door_detection.payload import contract_estimate
 from door_detection.scribble import scribble_problem
@@ -69,7 +74,8 @@ class DoorDetectorNode(Node):
         self.frames = self.rejected = self.incomplete = 0
         self.image_size: tuple[int, int] | None = None  # (width, height) of the last CameraInfo
         self.heartbeat = Heartbeat(self)
-        pub = lambda topic: create_contract_publisher(self, topic)
+        def pub(topic):
+            return create_contract_publisher(self, topic)
         self.estimate_pub, self.handle_pub = pub(Topics.DOOR_ESTIMATE), pub(Topics.HANDLE_POSE)
         self.marker_pub, self.debug_pub = pub(Topics.DOOR_MARKERS), pub(Topics.DETECTION_DEBUG_IMAGE)
         for stream, topic in zip(STREAMS, (Topics.COLOR_IMAGE, Topics.DEPTH_IMAGE, Topics.COLOR_INFO,

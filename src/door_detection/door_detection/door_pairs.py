@@ -1,4 +1,4 @@
-"""Door hypotheses from pairs of vertical lines, checked in 3-D (seed 001 Sec. III-A).
+"""Door hypotheses from pairs of vertical lines, checked in 3-D ([Banerjee 2015] Sec. III-A).
 
 For a pair of image lines (L left, R right) the paper's door D = (P1, P2, S_P) must
 satisfy (eq. 2):

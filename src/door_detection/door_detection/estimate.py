@@ -12,40 +12,15 @@ from enum import Enum
 
 import numpy as np
 
+from door_contract.vocabulary import Side
 from door_detection.errors import DetectionError
 
 FloatArray = np.ndarray
 """A float64 numpy array (shape given in each docstring)."""
 
 
-class Side(Enum):
-    """Left or right **as seen from the camera** (image left/right).
-
-    Used for the hinge (``DoorEstimate.hinge_side``) and for the handle, which is on the
-    opposite side (seed 001 Sec. III-A: "prior knowledge that the handle is on the left
-    or the right hand side").
-    """
-
-    LEFT = "left"
-    RIGHT = "right"
-
-    @property
-    def opposite(self) -> Side:
-        """The other side (the handle's side for a hinge side, and vice versa)."""
-        return Side.RIGHT if self is Side.LEFT else Side.LEFT
-
-    @property
-    def sign(self) -> int:
-        """-1 for LEFT, +1 for RIGHT: the sign of the image-x offset towards that side."""
-        return -1 if self is Side.LEFT else 1
-
-
-HingeSide = Side
-"""The hinge's side; an alias of :class:`Side` for readability at call sites."""
-
-
 class DetectionMode(Enum):
-    """Which pipeline produced an estimate (seed 001 Sec. III-A vs III-B)."""
+    """Which pipeline produced an estimate ([Banerjee 2015] Sec. III-A vs III-B)."""
 
     AUTOMATIC = "automatic"
     OPERATOR = "operator"
@@ -79,7 +54,7 @@ class DetectionOutcome(Enum):
 
 
 @dataclass(frozen=True)
-class DoorEstimate:
+class DetectedDoor:
     """A door and its handle in the camera optical frame (metres).
 
     * ``handle_position`` (3,): the handle grasp point.
@@ -131,7 +106,7 @@ class DoorEstimate:
         if self.frames_voted < 1:
             raise DetectionError(f"frames_voted must be >= 1, got {self.frames_voted}")
 
-    def transformed(self, transform: FloatArray) -> DoorEstimate:
+    def transformed(self, transform: FloatArray) -> DetectedDoor:
         """The same estimate in another frame: ``transform`` (4×4) maps optical-frame
         points to that frame (e.g. the camera pose in ``odom``, so frames taken while the
         robot moves can be voted on together)."""
@@ -178,7 +153,7 @@ class DetectionResult:
     """
 
     outcome: DetectionOutcome
-    estimate: DoorEstimate | None = None
+    estimate: DetectedDoor | None = None
     reason: str = ""
     elapsed: float = 0.0
     candidates: int = 0

@@ -19,7 +19,7 @@ head camera aimed at the handle) is rendered once and both detectors run on the 
 Success (DESIGN.md): handle within 2 cm of the ground-truth grasp point and normal within
 2° of the door's.  Prints, per mode, a table of successes per distance × angle bin, the
 paper-style orientation range per distance, and the time per frame (detection only).
-Seed 001 Table II: automatic worked at 1.4–2.6 m over about −0.5..0.55 rad; operator-aided
+[Banerjee 2015] Table II: automatic worked at 1.4–2.6 m over about −0.5..0.55 rad; operator-aided
 from 1 to 4 m.
 """
 
@@ -33,15 +33,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from door_contract.vocabulary import Side
 from door_detection.automatic import detect_automatic
-from door_detection.estimate import DetectionResult, Side
+from door_detection.estimate import DetectionResult
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
 from door_detection.sim_scenes import DOOR_COLOURS, HANDLE_COLOURS, Scenario, SceneFrame, render_scenario
-from door_detection.tables import (HANDLE_TOLERANCE, NORMAL_TOLERANCE_DEG, MODES, paper_table, success_table,
-                                   summary)
-
+from door_detection.tables import HANDLE_TOLERANCE, MODES, NORMAL_TOLERANCE_DEG, paper_table, success_table, summary
 
 
 @dataclass(frozen=True)

@@ -1,4 +1,4 @@
-"""The 3-D grasp point of a segmented handle (seed 001 Sec. III-A "handle", III-B).
+"""The 3-D grasp point of a segmented handle ([Banerjee 2015] Sec. III-A "handle", III-B).
 
 The paper gives "the handle point"; the robot needs a grasp point within 2 cm.  Depth on
 a 2-cm lever is sparse and, at 4 m, noisy (σ ≈ 5 cm per pixel for a stereo head), so the
@@ -30,7 +30,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
-from door_detection.estimate import Side
+from door_contract.vocabulary import Side
 from door_detection.options import DetectionOptions
 from door_detection.plane import Plane, pixel_rays, sample_depth
 
@@ -48,12 +48,13 @@ class DoorAxes:
     @classmethod
     def of(cls, plane: Plane, up: np.ndarray, hinge_side: Side) -> DoorAxes:
         """Axes from the plane, an approximate up (made orthogonal to n) and the hinge side
-        (the hinge axis points to the hinge's side of the image: sign of its x)."""
+        (the hinge axis points to the hinge's side of the image: image x runs to the right,
+        the robot's -y, so its sign is ``-hinge_side.sign``)."""
         normal = plane.normal
         e_up = up - float(up @ normal) * normal
         e_up = e_up / np.linalg.norm(e_up)
         e_hinge = np.cross(e_up, normal)
-        if np.sign(e_hinge[0]) != hinge_side.sign:
+        if np.sign(e_hinge[0]) != -hinge_side.sign:
             e_hinge = -e_hinge
         return cls(e_hinge, e_up, normal, float(plane.point @ normal))
 

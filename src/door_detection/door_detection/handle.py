@@ -1,4 +1,4 @@
-"""Handle segmentation by colour statistics (seed 001 Sec. III-A, used by III-B too).
+"""Handle segmentation by colour statistics ([Banerjee 2015] Sec. III-A, used by III-B too).
 
 The paper's rule (Sec. III-A, second phase): with µ and σ the mean and standard
 deviation of the door's pixels, door pixels are those within [µ − σ, µ + σ] ("marked
@@ -22,9 +22,8 @@ from dataclasses import dataclass
 import cv2
 import numpy as np
 
-from door_detection.estimate import Side
+from door_contract.vocabulary import Side
 from door_detection.options import DetectionOptions
-
 
 HANDLE_GROW_SIGMAS = 2.5
 """A pixel joins a handle blob within this many of the blob's own σ (its faces are shaded
@@ -176,7 +175,7 @@ def _search(rgb: np.ndarray, corners: np.ndarray, options: DetectionOptions, hin
     stats = colour_stats(pixels[inner][:: max(int(inner.sum()) // 20000, 1)])
     not_door = ~stats.matches(pixels, options)
     door_area = float(inner.sum())
-    sides = [hinge_side.opposite] if hinge_side is not None else [Side.LEFT, Side.RIGHT]
+    sides = [hinge_side.other] if hinge_side is not None else [Side.LEFT, Side.RIGHT]
     blobs = [b for b in (_side_blob(crop, not_door, side, door_area, options, scale) for side in sides)
              if b is not None]
     return (max(blobs, key=lambda b: b.area), stats) if blobs else None

@@ -1,4 +1,4 @@
-"""Operator-aided door detection from a scribble on the handle (seed 001 Sec. III-B).
+"""Operator-aided door detection from a scribble on the handle ([Banerjee 2015] Sec. III-B).
 
 "The operator scribbles on the door handle and based on the knowledge of where the door
 handle is, i.e. on the right or on the left of the door, points offset on the side of
@@ -34,15 +34,15 @@ import numpy as np
 import open3d
 
 from door_contract.converters.camera_info import CameraIntrinsics
+from door_contract.vocabulary import Side
 from door_detection.automatic import UNEXPECTED_ERRORS
 from door_detection.errors import InputError
-from door_detection.estimate import (DetectionMode, DetectionOutcome, DetectionResult, DoorEstimate,
-                                     Side)
+from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
 from door_detection.grasp import locate_grasp
 from door_detection.handle import ColourStats, HandleBlob, colour_stats, grow_blob
 from door_detection.options import DetectionOptions
 from door_detection.plane import Plane, refine_plane, sample_depth
-from door_detection.preprocessing import DepthError, Frame, validate_frame
+from door_detection.preprocessing import DepthError, RgbdFrame, validate_frame
 
 NO_CORNERS = np.full((4, 3), np.nan)
 PROUD_OF_DOOR = 0.025
@@ -86,7 +86,7 @@ class _PlaneFailure(Exception):
     """The sampled region holds no plane."""
 
 
-def _validate_scribble(scribble: np.ndarray, frame: Frame) -> np.ndarray:
+def _validate_scribble(scribble: np.ndarray, frame: RgbdFrame) -> np.ndarray:
     """(N, 2) finite pixel coordinates inside the image, else :class:`InputError`."""
     points = np.asarray(scribble, dtype=float)
     if points.ndim != 2 or points.shape[1] != 2 or len(points) == 0:
@@ -124,8 +124,8 @@ def _seed_mask(points: np.ndarray, shape: tuple[int, int], dilation: int) -> np.
     return mask.astype(bool)
 
 
-def _detect(frame: Frame, points: np.ndarray, options: DetectionOptions,
-            hinge_side: Side | None, up: np.ndarray) -> DoorEstimate:
+def _detect(frame: RgbdFrame, points: np.ndarray, options: DetectionOptions,
+            hinge_side: Side | None, up: np.ndarray) -> DetectedDoor:
     seed = _seed_mask(points, frame.depth.shape, options.scribble_dilation)
     drawn = _seed_mask(points, frame.depth.shape, 0)
     rows, cols = np.nonzero(seed)
@@ -142,11 +142,11 @@ def _detect(frame: Frame, points: np.ndarray, options: DetectionOptions,
                             options)
     if position is None:
         raise _PlaneFailure("the scribble's rays miss the fitted plane")
-    return DoorEstimate(position, plane.normal, side, float("nan"), NO_CORNERS,
+    return DetectedDoor(position, plane.normal, side, float("nan"), NO_CORNERS,
                         _confidence(frame, region, plane, options), DetectionMode.OPERATOR, 1, up)
 
 
-def _segment_handle(frame: Frame, masks: tuple[np.ndarray, np.ndarray], box: tuple[int, int, int, int],
+def _segment_handle(frame: RgbdFrame, masks: tuple[np.ndarray, np.ndarray], box: tuple[int, int, int, int],
                     door: ColourStats, hinge_side: Side, plane: Plane, noise: float,
                     options: DetectionOptions) -> HandleBlob:
     """The handle's pixels: inside the seed mask (``masks``: the grown scribble, and the
@@ -176,7 +176,7 @@ def _segment_handle(frame: Frame, masks: tuple[np.ndarray, np.ndarray], box: tup
     proud = _proud_of_door(frame, rows + y0, cols + x0, plane)
     if 3.0 * noise < PROUD_OF_DOOR and proud.sum() >= 3:
         rows, cols = rows[proud], cols[proud]
-    return grow_blob(frame.rgb, HandleBlob(rows + y0, cols + x0, hinge_side.opposite), door, options)
+    return grow_blob(frame.rgb, HandleBlob(rows + y0, cols + x0, hinge_side.other), door, options)
 
 
 def _touching(mask: np.ndarray, drawn: np.ndarray) -> np.ndarray:
@@ -186,7 +186,7 @@ def _touching(mask: np.ndarray, drawn: np.ndarray) -> np.ndarray:
     return np.isin(labels, touched[touched > 0]) if touched.size else mask
 
 
-def _proud_of_door(frame: Frame, rows: np.ndarray, cols: np.ndarray, plane: Plane) -> np.ndarray:
+def _proud_of_door(frame: RgbdFrame, rows: np.ndarray, cols: np.ndarray, plane: Plane) -> np.ndarray:
     """Mask of the pixels that may belong to a handle: no depth, or at least
     ``PROUD_OF_DOOR`` in front of the plane."""
     z = frame.depth[rows, cols]
@@ -197,7 +197,7 @@ def _proud_of_door(frame: Frame, rows: np.ndarray, cols: np.ndarray, plane: Plan
     return distance >= PROUD_OF_DOOR
 
 
-def _seed_depth(frame: Frame, box: tuple[int, int, int, int], options: DetectionOptions) -> float:
+def _seed_depth(frame: RgbdFrame, box: tuple[int, int, int, int], options: DetectionOptions) -> float:
     """Median valid depth in growing windows around the scribble's box (m)."""
     x0, y0, x1, y1 = box
     for grow in (10, 40, 120):
@@ -226,7 +226,7 @@ def _region_mask(shape: tuple[int, int], box: tuple[int, int, int, int], pixels_
     return mask
 
 
-def _fit_region_plane(frame: Frame, region: np.ndarray, options: DetectionOptions) -> tuple[Plane, float]:
+def _fit_region_plane(frame: RgbdFrame, region: np.ndarray, options: DetectionOptions) -> tuple[Plane, float]:
     """Open3D RANSAC plane (Sec. III-B) over the region's valid points, refined by robust
     least squares, normal towards the camera; and the depth noise σ about it (MAD)."""
     rows, cols = np.nonzero(region)
@@ -251,7 +251,7 @@ def _fit_region_plane(frame: Frame, region: np.ndarray, options: DetectionOption
     return plane, 1.4826 * float(np.median(residual))
 
 
-def _confidence(frame: Frame, region: np.ndarray, plane: Plane, options: DetectionOptions) -> float:
+def _confidence(frame: RgbdFrame, region: np.ndarray, plane: Plane, options: DetectionOptions) -> float:
     """Fraction of the region's valid points within ``plane_inlier_distance`` of the plane."""
     rows, cols = np.nonzero(region)
     stride = max(len(rows) // options.plane_max_points, 1)
@@ -259,7 +259,7 @@ def _confidence(frame: Frame, region: np.ndarray, plane: Plane, options: Detecti
     return float(np.mean(np.abs(plane.signed_distance(points)) <= options.plane_inlier_distance))
 
 
-def _guess_hinge_side(frame: Frame, box: tuple[int, int, int, int], pixels_per_metre: float,
+def _guess_hinge_side(frame: RgbdFrame, box: tuple[int, int, int, int], pixels_per_metre: float,
                       stats: ColourStats, options: DetectionOptions) -> Side:
     """The side whose strip beside the handle is more door-coloured is the door (hinge) side.
 

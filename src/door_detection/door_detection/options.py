@@ -2,7 +2,7 @@
 
 Every field's docstring gives its unit, the interval enforced by
 :meth:`DetectionOptions.__post_init__` and, where the value comes from the paper
-(seed 001, Banerjee et al., WPI-CMU DRC Finals), the section it is taken from.
+([Banerjee 2015], Banerjee et al., WPI-CMU DRC Finals), the section it is taken from.
 Pixel quantities refer to the **full-resolution** image unless stated otherwise; the
 2-D stage runs on an image scaled by ``line_scale`` and converts back.
 """
@@ -295,7 +295,7 @@ class DetectionOptions:
     vote_handle_confidence: float = 0.01
     """Largest half-width of the 95 % confidence interval of the confirmed handle,
     t₀.₉₇₅(n − 1)·‖s‖/√n over the n agreeing estimates (m), (0, 0.1]: half the 2 cm grasp
-    tolerance (seed 001 Sec. IV). Student's t makes two noisy frames that happen to agree
+    tolerance ([Banerjee 2015] Sec. IV). Student's t makes two noisy frames that happen to agree
     wait (t = 12.7 for n = 2): with a standard error alone, 2 of 490 Table II doors were
     confirmed 2.3–3.4 cm off; exactly agreeing frames (clean depth) still confirm at n = 2."""
     vote_normal_confidence_deg: float = 1.0

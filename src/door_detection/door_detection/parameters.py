@@ -6,7 +6,7 @@ NODE_NAME = "door_detector"
 
 DETECTOR_PARAMETERS = (
     ParameterSpec("vote_frames", 10, "window of the vote: frames whose estimates are voted on "
-                  "(seed 001 Sec. III-A: 10)", minimum=1, maximum=100),
+                  "([Banerjee 2015] Sec. III-A: 10)", minimum=1, maximum=100),
     ParameterSpec("vote_min_agreeing", 2, "agreeing estimates (more than half of the window's) that "
                   "confirm a door before the window is full", unit="frames", minimum=1, maximum=100),
     ParameterSpec("vote_handle_confidence", 0.01, "largest 95 % confidence half-width of the confirmed "

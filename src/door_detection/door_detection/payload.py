@@ -10,14 +10,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from door_contract.payloads import DoorEstimate as DoorEstimatePayload
-from door_contract.payloads import HingeSide
-from door_detection.estimate import DoorEstimate, Side
+from door_contract.payloads import DoorEstimate
+from door_contract.vocabulary import Side
+from door_detection.estimate import DetectedDoor
 
 UP = np.array([0.0, 0.0, 1.0])
 
 
-def contract_corners(estimate: DoorEstimate, nominal: dict) -> np.ndarray:
+def contract_corners(estimate: DetectedDoor, nominal: dict) -> np.ndarray:
     corners = np.asarray(estimate.corners)
     if np.all(np.isfinite(corners)):
         if estimate.hinge_side is Side.LEFT:
@@ -26,7 +26,7 @@ def contract_corners(estimate: DoorEstimate, nominal: dict) -> np.ndarray:
     return _nominal_corners(estimate, nominal)
 
 
-def _nominal_corners(estimate: DoorEstimate, nominal: dict) -> np.ndarray:
+def _nominal_corners(estimate: DetectedDoor, nominal: dict) -> np.ndarray:
     normal = np.asarray(estimate.normal) - (np.asarray(estimate.normal) @ UP) * UP
     normal /= np.linalg.norm(normal)
     # facing the door the robot looks along −n; its left is z × (−n)
@@ -34,18 +34,20 @@ def _nominal_corners(estimate: DoorEstimate, nominal: dict) -> np.ndarray:
     towards_hinge = left if estimate.hinge_side is Side.LEFT else -left
     free_edge = np.asarray(estimate.handle_position) - nominal["grasp_to_free_edge"] * towards_hinge
     hinge_edge = free_edge + nominal["nominal_door_width"] * towards_hinge
-    bottom = lambda p: np.array([p[0], p[1], 0.0])
-    top = lambda p: np.array([p[0], p[1], nominal["nominal_door_height"]])
+    def bottom(p):
+        return np.array([p[0], p[1], 0.0])
+    def top(p):
+        return np.array([p[0], p[1], nominal["nominal_door_height"]])
     return np.array([bottom(hinge_edge), bottom(free_edge), top(free_edge), top(hinge_edge)])
 
 
-def contract_estimate(estimate: DoorEstimate, stamp: float, nominal: dict) -> DoorEstimatePayload:
+def contract_estimate(estimate: DetectedDoor, stamp: float, nominal: dict) -> DoorEstimate:
     corners = contract_corners(estimate, nominal)
     width = estimate.width if np.isfinite(estimate.width) else nominal["nominal_door_width"]
-    return DoorEstimatePayload(
+    return DoorEstimate(
         stamp=stamp, frame_id="odom", handle_position=tuple(float(v) for v in estimate.handle_position),
         normal=tuple(float(v) for v in estimate.normal),
-        hinge_side=HingeSide.LEFT if estimate.hinge_side is Side.LEFT else HingeSide.RIGHT,
+        hinge_side=estimate.hinge_side,
         width=float(width), corners=tuple(tuple(float(v) for v in c) for c in corners),
         confidence=float(estimate.confidence), frames_voted=int(estimate.frames_voted),
         mode=estimate.mode.value)

@@ -1,6 +1,6 @@
-"""Input checks and the image filtering of the automatic detector (seed 001 Sec. III-A).
+"""Input checks and the image filtering of the automatic detector ([Banerjee 2015] Sec. III-A).
 
-:func:`validate_frame` turns the raw inputs into a :class:`Frame` or raises
+:func:`validate_frame` turns the raw inputs into a :class:`RgbdFrame` or raises
 :class:`~door_detection.errors.InputError` (:class:`DepthError` when the depth holds no
 valid pixel); :func:`edge_image` is the paper's filter chain, histogram equalisation →
 bilateral filter → Canny, run on a down-scaled image for speed.
@@ -24,7 +24,7 @@ class DepthError(InputError):
 
 
 @dataclass(frozen=True)
-class Frame:
+class RgbdFrame:
     """A checked RGB-D frame: ``rgb`` H×W×3 uint8, ``depth`` H×W float32 metres with
     every invalid or out-of-range reading set to NaN, and matching ``intrinsics``."""
 
@@ -42,12 +42,12 @@ class Frame:
 
 
 def validate_frame(rgb: np.ndarray, depth: np.ndarray, intrinsics: CameraIntrinsics,
-                   options: DetectionOptions) -> Frame:
+                   options: DetectionOptions) -> RgbdFrame:
     """Check shapes, dtypes and intrinsics; mask depth outside [min_depth, max_depth]."""
     colour = validate_rgb(rgb)
     check_intrinsics(intrinsics, colour.shape[1], colour.shape[0])
     metres = _validate_depth(depth, colour.shape[:2], options)
-    return Frame(colour, metres, intrinsics)
+    return RgbdFrame(colour, metres, intrinsics)
 
 
 def validate_rgb(rgb: np.ndarray) -> np.ndarray:

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from door_detection.automatic import detect_automatic
-from door_detection.estimate import DetectionMode, DetectionOutcome, DetectionResult, DoorEstimate, Side
+from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.sim_scenes import lever_corners, synthetic_scribble
@@ -48,7 +48,7 @@ class SearchOutcome:
     detected on, ``views`` visited, ``sim_time`` from the search's first frame to the
     confirming one (s), the detector's wall time per frame (s)."""
 
-    estimate: DoorEstimate | None
+    estimate: DetectedDoor | None
     frames: int
     views: int
     sim_time: float
@@ -138,5 +138,5 @@ def _detect(frame: object, mode: DetectionMode, scribble: np.ndarray | None, opt
     if scribble is None:
         return DetectionResult(DetectionOutcome.NO_HANDLE, None, "no whole handle in view for the operator to mark")
     up = frame.camera_pose[:3, :3].T @ np.array([0.0, 0.0, 1.0])
-    side = Side(world.config.door.hinge_side.value)
+    side = world.config.door.hinge_side
     return detect_from_scribble(frame.rgb, frame.depth, frame.intrinsics, scribble, options, side, up)

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
-from door_detection.estimate import Side
+from door_contract.vocabulary import Side
 
 CAMERA_WIDTH = 1024
 CAMERA_HEIGHT = 544
@@ -95,10 +95,9 @@ def render_scenario(scenario: Scenario, scribble_noise_px: float = 2.0) -> Scene
 
 
 def _world_config(scenario: Scenario) -> object:
-    from door_sim_bridge.world import (CameraConfig, DoorConfig, HingeSide, RobotVisuals,
-                                       StanceConfig, WorldConfig)
+    from door_sim_bridge.world import CameraConfig, DoorConfig, RobotVisuals, StanceConfig, WorldConfig
 
-    door = DoorConfig(hinge_side=HingeSide(scenario.hinge_side.value), door_colour=scenario.door_colour,
+    door = DoorConfig(hinge_side=scenario.hinge_side, door_colour=scenario.door_colour,
                       handle_colour=scenario.handle_colour)
     pitch = math.atan2(HEAD_CAMERA_HEIGHT - door.handle_height - scenario.aim_above_handle,
                        scenario.distance)

@@ -22,12 +22,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from door_detection.estimate import DetectionMode, DoorEstimate
+from door_detection.estimate import DetectedDoor, DetectionMode
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
 from door_detection.search_trial import SearchOutcome, SearchSettings, run_search
-from door_detection.tables import (CELL_TARGET, HANDLE_TOLERANCE, MODES, NORMAL_TOLERANCE_DEG, paper_form,
-                                   paper_table, success_table, summary, worst_cell)
+from door_detection.tables import (
+    CELL_TARGET,
+    HANDLE_TOLERANCE,
+    MODES,
+    NORMAL_TOLERANCE_DEG,
+    paper_form,
+    paper_table,
+    success_table,
+    summary,
+    worst_cell,
+)
 from door_detection.trial_scenes import TrialScene, random_scene, world_config
 from door_detection.view_search import Neck, ViewSearchOptions
 
@@ -76,7 +85,7 @@ class TrialResult:
 def judge(outcome: SearchOutcome, grasp: np.ndarray, normal: np.ndarray, width: float) -> SearchResult:
     """A search against the ground truth (odom)."""
     seconds = float(np.median(outcome.frame_seconds)) if outcome.frame_seconds else 0.0
-    estimate: DoorEstimate | None = outcome.estimate
+    estimate: DetectedDoor | None = outcome.estimate
     if estimate is None:
         return SearchResult(False, math.nan, math.nan, math.nan, "no door confirmed", seconds, outcome.frames,
                             outcome.views, outcome.sim_time)
@@ -136,7 +145,7 @@ def search_cost(results: Sequence[TrialResult], mode: str) -> str:
             f"max {times.max():.2f} s; frames median {np.median([m.frames for m in confirmed]):.0f}")
     parts = [line, f"  first view: {len(first)} trials, median {np.median(first) if first else math.nan:.2f} s; "
              f"after turning the head or body: {len(searched)} trials, median "
-             f"{np.median(searched) if searched else math.nan:.2f} s, up to {max((m.views for m in confirmed)):d} views"]
+             f"{np.median(searched) if searched else math.nan:.2f} s, up to {max(m.views for m in confirmed):d} views"]
     widths = [m.width_error for m in confirmed if math.isfinite(m.width_error)]
     if widths:
         parts.append(f"  width error cm: median {np.median(widths) * 100:.2f}, 95% {np.percentile(widths, 95) * 100:.2f}, "

@@ -1,4 +1,4 @@
-"""Printing detection results in the form of seed 001's Table II.
+"""Printing detection results in the form of [Banerjee 2015]'s Table II.
 
 An *outcome* is any object with ``scenario.distance`` (m), ``scenario.yaw`` (rad) and, per
 mode ("automatic", "operator"), an attribute of that name with ``success`` (bool),
@@ -29,7 +29,7 @@ PAPER_TABLE_II = (
     ("1.4 - 1.8 m", "-0.5 to 0.0", "success", "-0.5 to 0.45", "success"),
     ("1 - 1.3 m", "-", "failure", "-0.2 to 0.2", "success"),
 )
-"""Seed 001 Table II: distance, automatic orientation range and result, operator-aided."""
+"""[Banerjee 2015] Table II: distance, automatic orientation range and result, operator-aided."""
 
 
 def mode_of(outcome: object, mode: str) -> object:
@@ -74,7 +74,7 @@ def success_table(outcomes: Sequence[object], mode: str, grid: object) -> str:
 
 
 def paper_form(outcomes: Sequence[object], grid: object) -> str:
-    """Ours in the layout of seed 001 Table II: per distance, each mode's orientation range
+    """Ours in the layout of [Banerjee 2015] Table II: per distance, each mode's orientation range
     (cells at ≥ 98 %) and result (success when every cell of the row reaches 98 %)."""
     lines = ["distance | automatic: orientation (rad), result, rate | operator-aided: orientation (rad), result, rate"]
     for distance in grid.distances:
@@ -121,7 +121,7 @@ def summary(outcomes: Sequence[object], mode: str) -> str:
 
 
 def paper_table() -> str:
-    """Seed 001 Table II, for comparison."""
-    lines = ["Seed 001 Table II (Atlas, DRC): distance | automatic range, result | operator-aided range, result"]
+    """[Banerjee 2015] Table II, for comparison."""
+    lines = ["[Banerjee 2015] Table II (Atlas, DRC): distance | automatic range, result | operator-aided range, result"]
     lines += [f"  {d:>12} | {a:>13}, {ar:<7} | {o:>13}, {orr}" for d, a, ar, o, orr in PAPER_TABLE_II]
     return "\n".join(lines)

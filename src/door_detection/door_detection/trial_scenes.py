@@ -4,7 +4,7 @@ A :class:`TrialScene` is one start of the door task as the graph has it: the rob
 the sim bridge's 640×480 head camera with its 60° vertical field of view, its arms rendered)
 stands ``distance`` from the door plane, ``lateral`` aside, turned by ``yaw`` from facing
 the door (the paper's "orientation ... about the vertical where the robot is standing",
-seed 001 Sec. V); the door and its appearance are drawn over the Monte-Carlo's full ranges
+[Banerjee 2015] Sec. V); the door and its appearance are drawn over the Monte-Carlo's full ranges
 (issue 13): width 0.80–1.00 m, handle height 0.85–1.10 m, push/pull, left/right hinge, depth
 noise k ≤ 0.005 (σ = k·z², 8 cm at 4 m), colours from the palettes below (a white leaf in a
 white wall and frame included), and a room light from a random direction in front of the wall.
@@ -18,6 +18,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+
+from door_contract.vocabulary import DoorOpening, HingeSide
 
 Colour = tuple[float, float, float]
 
@@ -55,8 +57,8 @@ class TrialScene:
     lateral: float = 0.0
     width: float = 0.914
     handle_height: float = 0.91
-    opening: str = "push"
-    hinge_side: str = "left"
+    opening: DoorOpening = DoorOpening.PUSH
+    hinge_side: HingeSide = HingeSide.LEFT
     depth_noise: float = 0.0
     appearance: Appearance = Appearance()
     seed: int = 0
@@ -86,7 +88,8 @@ def random_scene(distance: float, yaw: float, rng: np.random.Generator, seed: in
     """A scene of one Table II cell (``distance``, ``yaw``) with everything else drawn."""
     return TrialScene(distance, yaw, float(rng.uniform(-lateral_range, lateral_range)),
                       float(rng.uniform(0.80, 1.00)), float(rng.uniform(0.85, 1.10)),
-                      ("push", "pull")[int(rng.integers(2))], ("left", "right")[int(rng.integers(2))],
+                      (DoorOpening.PUSH, DoorOpening.PULL)[int(rng.integers(2))],
+                      (HingeSide.LEFT, HingeSide.RIGHT)[int(rng.integers(2))],
                       float(rng.uniform(0.0, max_depth_noise)), random_appearance(rng), seed)
 
 
@@ -95,11 +98,10 @@ def world_config(scene: TrialScene) -> object:
     kinematic robot (:class:`~door_sim_bridge.world.config.RobotMode`): the search turns the body
     in place by placing the base (:mod:`door_detection.search_trial`), which the physical robot
     refuses, and only the camera's view is measured."""
-    from door_sim_bridge.world import (CameraConfig, DoorConfig, DoorOpening, HingeSide, RobotMode,
-                                       StanceConfig, WorldConfig)
+    from door_sim_bridge.world import CameraConfig, DoorConfig, RobotMode, StanceConfig, WorldConfig
 
     look = scene.appearance
-    door = DoorConfig(opening=DoorOpening(scene.opening), hinge_side=HingeSide(scene.hinge_side),
+    door = DoorConfig(opening=scene.opening, hinge_side=scene.hinge_side,
                       width=scene.width, handle_height=scene.handle_height, door_colour=look.leaf,
                       frame_colour=look.frame, handle_colour=look.handle, wall_colour=look.wall,
                       floor_colour=look.floor)

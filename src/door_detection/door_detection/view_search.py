@@ -1,6 +1,6 @@
-"""Active perception: where to look next while no door is confirmed (beyond seed 001).
+"""Active perception: where to look next while no door is confirmed (beyond [Banerjee 2015]).
 
-Seed 001's detector looked where the robot stood; a door partly out of the head camera's
+[Banerjee 2015]'s detector looked where the robot stood; a door partly out of the head camera's
 view (one edge beyond the image border) gave "no pair of vertical lines" forever. The
 search here turns the head first — TALOS has a 2-DOF neck — then the body, in place:
 

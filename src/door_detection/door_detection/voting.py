@@ -1,4 +1,4 @@
-"""The vote over frames, sequential (seed 001 Sec. III-A, last paragraph, made faster).
+"""The vote over frames, sequential ([Banerjee 2015] Sec. III-A, last paragraph, made faster).
 
 The paper: "The entire algorithm is repeated over a window of 10 frames ... the detection
 with the maximum occurrence is selected as the door"; waiting for 6 of 10 frames at the
@@ -24,7 +24,7 @@ soon as the evidence suffices:
 
 Estimates are compared in whatever frame they are given in. Frames from different head or
 body views are voted on together once transformed to ``odom``
-(:meth:`~door_detection.estimate.DoorEstimate.transformed`), which is how the views of the
+(:meth:`~door_detection.estimate.DetectedDoor.transformed`), which is how the views of the
 active search (:mod:`~door_detection.view_search`) are fused.
 """
 
@@ -37,7 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import stdtrit
 
-from door_detection.estimate import DetectionOutcome, DetectionResult, DoorEstimate
+from door_detection.estimate import DetectedDoor, DetectionOutcome, DetectionResult
 from door_detection.options import DetectionOptions
 
 
@@ -48,7 +48,7 @@ class VoteResult:
     ``confidence`` half-width of the candidate's handle (m; 0 for one estimate, inf for none)."""
 
     outcome: DetectionOutcome
-    estimate: DoorEstimate | None
+    estimate: DetectedDoor | None
     agreeing: int
     window: int
     confidence: float = math.inf
@@ -63,7 +63,7 @@ class Voter:
 
     def __init__(self, options: DetectionOptions | None = None) -> None:
         self._options = options if options is not None else DetectionOptions()
-        self._window: deque[DoorEstimate | None] = deque(maxlen=self._options.vote_frames)
+        self._window: deque[DetectedDoor | None] = deque(maxlen=self._options.vote_frames)
 
     @property
     def size(self) -> int:
@@ -77,7 +77,7 @@ class Voter:
         """Forget every frame (e.g. after the operator's scribble replaced the automatic mode)."""
         self._window.clear()
 
-    def add(self, detection: DoorEstimate | DetectionResult | None) -> VoteResult:
+    def add(self, detection: DetectedDoor | DetectionResult | None) -> VoteResult:
         """Record one frame's estimate (a failed result or None is a vote for nothing)
         and return the current decision."""
         estimate = detection.estimate if isinstance(detection, DetectionResult) else detection
@@ -87,7 +87,7 @@ class Voter:
     def decide(self) -> VoteResult:
         """The decision on the current window (see the module docstring)."""
         estimates = [e for e in self._window if e is not None]
-        best: list[DoorEstimate] = []
+        best: list[DetectedDoor] = []
         for pivot in reversed(estimates):
             group = [e for e in estimates if self._agree(pivot, e)]
             if len(group) > len(best):
@@ -101,13 +101,13 @@ class Voter:
         outcome = DetectionOutcome.VOTING if len(self._window) < self.size else DetectionOutcome.NO_CONSENSUS
         return VoteResult(outcome, None, len(best), len(self._window), error)
 
-    def _agree(self, a: DoorEstimate, b: DoorEstimate) -> bool:
+    def _agree(self, a: DetectedDoor, b: DetectedDoor) -> bool:
         distance = float(np.linalg.norm(a.handle_position - b.handle_position))
         angle = math.degrees(math.acos(float(np.clip(a.normal @ b.normal, -1.0, 1.0))))
         return (distance <= self._options.vote_handle_distance and
                 angle <= self._options.vote_normal_angle_deg and a.hinge_side is b.hinge_side)
 
-    def _consensus(self, group: list[DoorEstimate]) -> DoorEstimate:
+    def _consensus(self, group: list[DetectedDoor]) -> DetectedDoor:
         """Mean of the agreeing estimates; confidence = |group| / N."""
         def mean(name: str) -> np.ndarray:
             return np.mean(np.stack([getattr(e, name) for e in group]), axis=0)
@@ -121,11 +121,11 @@ class Voter:
             width = float(np.nanmean([e.width for e in group])) \
                 if any(math.isfinite(e.width) for e in group) else float("nan")
         newest = group[-1]
-        return DoorEstimate(mean("handle_position"), unit(mean("normal")), newest.hinge_side, width,
+        return DetectedDoor(mean("handle_position"), unit(mean("normal")), newest.hinge_side, width,
                             corners, len(group) / self.size, newest.mode, len(group), unit(mean("up")))
 
 
-def precision(group: list[DoorEstimate]) -> tuple[float, float]:
+def precision(group: list[DetectedDoor]) -> tuple[float, float]:
     """95 % confidence half-widths of a group's mean handle (m) and mean normal (deg).
 
     Handle: t·‖s‖/√n, s the per-axis sample standard deviations (n − 1). Normal: t × the RMS

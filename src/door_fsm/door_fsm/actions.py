@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from door_contract.vocabulary import WalkGoal
+
 
 @dataclass(frozen=True)
 class RequestDetection:
@@ -13,7 +15,7 @@ class RequestDetection:
 @dataclass(frozen=True)
 class RequestFootsteps:
     request_id: int
-    goal: str  # "stand" | "through"
+    goal: WalkGoal
     attempt: int = 0  # 0 first try, +1 per repeat of the state
 
 

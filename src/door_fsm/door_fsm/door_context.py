@@ -10,12 +10,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from door_contract.payloads import DoorEstimate, FootstepRequest, MotionRequest, PlanningOutcome, encode
+from door_contract.vocabulary import DoorOpening, Side, grasp_hand
 from door_fsm import actions as act
 
 
 @dataclass
 class DoorContext:
-    opening: str  # "push" | "pull"
+    opening: DoorOpening
     backend: str  # "sqp" | "chomp"
     latest: DoorEstimate | None = None
     approved: DoorEstimate | None = None
@@ -30,9 +31,9 @@ class DoorContext:
         return MotionRequest(action.request_id, action.motion, self.opening, self.backend, self.angle,
                              self._approved_stamp(), self._approved_json(), attempt=action.attempt)
 
-    def grasp_hand(self) -> str:
+    def grasp_hand(self) -> Side:
         door = self.approved or self.latest
-        return door.hinge_side.grasp_hand(self.opening) if door else "right"
+        return grasp_hand(door.hinge_side, self.opening) if door else Side.RIGHT
 
     def planned(self, outcome: PlanningOutcome) -> None:
         """A motion proposal says where it leaves the door."""

@@ -1,4 +1,4 @@
-"""ROS 2 node ``/fsm_supervisor``: runs the door task's state machine (seed 001 Fig. 3).
+"""ROS 2 node ``/fsm_supervisor``: runs the door task's state machine ([Banerjee 2015] Fig. 3).
 
 Thin glue: topics become machine events, machine actions become publications and service
 calls. Deciding lives in :mod:`door_fsm.machine`, pairing answers with requests in
@@ -8,6 +8,9 @@ under ``use_sim_time``); docs/CLOCKS.md.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
 
 from nav_msgs.msg import Path
 from rclpy.clock import Clock, ClockType
@@ -19,11 +22,18 @@ from trajectory_msgs.msg import JointTrajectory
 from door_contract.converters.diagnostics import Health
 from door_contract.errors import ContractError
 from door_contract.frames import Frame
-from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
-                                        create_contract_subscription, declare_parameters, run_node)
+from door_contract.node_support import (
+    Heartbeat,
+    as_parameter_error,
+    create_contract_publisher,
+    create_contract_subscription,
+    declare_parameters,
+    run_node,
+)
 from door_contract.payloads import ExecutionOutcome, OutcomeStatus, PlanningCancel, PlanningOutcome, decode, encode
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
-from door_contract.topics import Services, Topics
+from door_contract.topics import Services, Topics, TopicSpec
+from door_contract.vocabulary import DoorOpening
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.answers import execution_event, planning_event, usable_door_estimate
@@ -34,7 +44,6 @@ from door_fsm.machine import DoorTaskMachine, MachineOptions, MachineOptionsErro
 from door_fsm.operator_commands import AutonomyLevel, UnknownCommandError, parse_command
 from door_fsm.parameters import NODE_NAME, SUPERVISOR_PARAMETERS
 from door_fsm.records import Instant
-from door_fsm.states import DoorOpening
 from door_fsm.summaries import door_summary, task_report, work_of
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
@@ -56,7 +65,7 @@ class FsmSupervisorNode(Node):
                 planning_timeout_s=p["planning_timeout"], approval_timeout_s=p["approval_timeout"],
                 execution_factor=p["execution_timeout_factor"], execution_margin_s=p["execution_timeout_margin"],
                 max_repeats=p["max_repeats"]))
-        self.door = DoorContext(p["opening"], p["backend"])
+        self.door = DoorContext(DoorOpening(p["opening"]), p["backend"])
         self.exchange = PlanExchange(lambda message: work_of(message, step_duration))
         # 4 Hz: the sim bridge's dead-man stops the robot when this heartbeat falls silent
         self.heartbeat = Heartbeat(self, period_s=HEARTBEAT_PERIOD_S)
@@ -64,7 +73,7 @@ class FsmSupervisorNode(Node):
         self.graph = GraphWatch(set(p["required_nodes"]), self._seconds(self.steady) + p["start_delay"],
                                 p["graph_timeout"])
         self._detection_request: int | None = None
-        self._handlers = {act.AnnounceState: self._announce, act.AskApproval: self._ask, act.ClearApproval:
+        self._handlers: dict[type, Callable[[Any], None]] = {act.AnnounceState: self._announce, act.AskApproval: self._ask, act.ClearApproval:
                           lambda a: self.approval_pub.publish(String(data="")),
                           act.Notice: lambda a: self.get_logger().warning(a.text),
                           act.RequestDetection: self._request_detection, act.RequestFootsteps: self._request_footsteps,
@@ -75,13 +84,18 @@ class FsmSupervisorNode(Node):
         self.get_logger().info(f"ready: {p['opening']} door, autonomy {p['autonomy']}, backend {p['backend']}")
 
     def _make_interfaces(self) -> None:
-        pub = lambda topic: create_contract_publisher(self, topic)
+        def pub(topic: TopicSpec) -> Any:
+            return create_contract_publisher(self, topic)
+
         self.state_pub, self.approval_pub, self.report_pub = (pub(t) for t in (
             Topics.TASK_STATE, Topics.APPROVAL_REQUEST, Topics.TASK_REPORT))
         self.footsteps_pub, self.trajectory_pub = pub(Topics.FOOTSTEP_PLAN), pub(Topics.ARM_TRAJECTORY)
         self.request_pubs = {"footsteps": pub(Topics.FOOTSTEP_REQUEST), "motion": pub(Topics.MOTION_REQUEST)}
         self.cancel_pubs = {kind: pub(topics[2]) for kind, topics in KINDS.items()}
-        sub = lambda topic, callback: create_contract_subscription(self, topic, callback)
+
+        def sub(topic: TopicSpec, callback: Callable[..., None]) -> Any:
+            return create_contract_subscription(self, topic, callback)
+
         for kind, (proposal, outcome, _) in KINDS.items():
             sub(proposal, lambda m, k=kind: self._feed_answer(self.exchange.add_message(k, stamp_ns(m.header.stamp), m)))
             sub(outcome, lambda m, k=kind: self._on_planning_outcome(k, m))
@@ -173,7 +187,7 @@ class FsmSupervisorNode(Node):
         self.heartbeat.update(health, action.state, reason=action.reason or "-", failure=self.machine.failure_reason or "-")
         self.get_logger().info(f"state {action.state}" + (f" ({action.reason})" if action.reason else ""))
         if self.machine.state.is_terminal:
-            report = task_report(self.machine.state.value, self.machine.failure_reason, self.parameters["opening"],
+            report = task_report(self.machine.state.value, self.machine.failure_reason, self.door.opening,
                                  self.parameters["autonomy"], self.machine.report(),
                                  "sim" if self.get_parameter("use_sim_time").value else "wall")
             self.report_pub.publish(String(data=encode(report)))

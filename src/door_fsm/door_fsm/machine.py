@@ -17,14 +17,16 @@ planning and approval on the wall clock, execution on the robot clock, scaled wi
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass
 
+from door_contract.vocabulary import DoorOpening, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.approvals import approval_text, refusal
 from door_fsm.operator_commands import AutonomyLevel, OperatorCommand, OperatorWord
 from door_fsm.records import PHASE_CLOCK, Instant, StateRecord
-from door_fsm.states import DoorOpening, Phase, StateOutcome, TaskState
+from door_fsm.states import Phase, StateOutcome, TaskState
 from door_fsm.wiring import build_wiring
 from door_fsm.work import STATE_WORK, StateWork, WorkKind
 
@@ -81,6 +83,14 @@ class DoorTaskMachine:
     def work(self) -> StateWork | None:
         return STATE_WORK.get(self.state)
 
+    @property
+    def _active_work(self) -> StateWork:
+        """The work of the active state (planning, approval and execution have one)."""
+        work = self.work
+        if work is None:
+            raise RuntimeError(f"state {self.state.value} has no work: not an active state")
+        return work
+
     def start(self, now: Instant) -> list[act.Action]:
         return self._enter(TaskState.DETECT_DOOR, now)
 
@@ -117,7 +127,8 @@ class DoorTaskMachine:
         return []
 
     def _tick(self, now: Instant) -> list[act.Action]:
-        if self._deadline is None or self.state.is_terminal or now.on(PHASE_CLOCK[self.phase]) <= self._deadline:
+        if (self._deadline is None or self.phase is None or self.state.is_terminal
+                or now.on(PHASE_CLOCK[self.phase]) <= self._deadline):
             return []
         if self.phase is Phase.AWAITING_APPROVAL:
             return self._finish(StateOutcome.TIMEOUT, now,
@@ -146,10 +157,12 @@ class DoorTaskMachine:
 
     def _request_for(self, work: StateWork, attempt: int) -> act.Action:
         rid = self._request_id
-        return {WorkKind.DETECTION: lambda: act.RequestDetection(rid),
-                WorkKind.FOOTSTEPS: lambda: act.RequestFootsteps(rid, work.target, attempt),
+        makers: dict[WorkKind, Callable[[], act.Action]] = {
+                WorkKind.DETECTION: lambda: act.RequestDetection(rid),
+                WorkKind.FOOTSTEPS: lambda: act.RequestFootsteps(rid, WalkGoal(work.target), attempt),
                 WorkKind.MOTION: lambda: act.RequestMotion(rid, work.target, attempt),
-                WorkKind.GRASP: lambda: act.CallGrasp(rid, close=True)}[work.kind]()
+                WorkKind.GRASP: lambda: act.CallGrasp(rid, close=True)}
+        return makers[work.kind]()
 
     def _begin_phase(self, phase: Phase, now: Instant, timeout_s: float) -> None:
         self.phase = phase
@@ -210,12 +223,12 @@ class DoorTaskMachine:
         self._work_s = max(0.0, event.work_s)
         if self._needs_approval():
             self._begin_phase(Phase.AWAITING_APPROVAL, now, self.options.approval_timeout_s)
-            return [act.AskApproval(self._request_id, approval_text(self.state.label, self._request_id, self.work,
+            return [act.AskApproval(self._request_id, approval_text(self.state.label, self._request_id, self._active_work,
                                                                     event.summary))]
         return self._execute(now)
 
     def _execute(self, now: Instant) -> list[act.Action]:
-        work = self.work
+        work = self._active_work
         if work.kind is WorkKind.DETECTION:
             return self._finish(StateOutcome.SUCCEEDED, now)
         timeout = self._work_s * self.options.execution_factor + self.options.execution_margin_s
@@ -245,7 +258,7 @@ class DoorTaskMachine:
 
     def _needs_approval(self) -> bool:
         level = self.options.autonomy
-        return level is AutonomyLevel.STEP or (level is AutonomyLevel.SUPERVISED and self.work.critical)
+        return level is AutonomyLevel.STEP or (level is AutonomyLevel.SUPERVISED and self._active_work.critical)
 
     # ------------------------------------------------------------------ operator
     def _on_operator(self, word: OperatorWord, now: Instant) -> list[act.Action]:

@@ -20,8 +20,14 @@ from std_msgs.msg import String
 
 from door_contract.node_support import create_contract_publisher, create_contract_subscription, run_node
 from door_contract.topics import Topics
-from door_fsm.operator_commands import (OperatorCommand, OperatorWord, UnknownCommandError, parse_command,
-                                        request_id_of, usage)
+from door_fsm.operator_commands import (
+    OperatorCommand,
+    OperatorWord,
+    UnknownCommandError,
+    parse_command,
+    request_id_of,
+    usage,
+)
 
 
 class OperatorConsole(Node):

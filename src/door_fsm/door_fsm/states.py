@@ -1,4 +1,4 @@
-"""States, phases and outcomes of the door task (seed 001, Fig. 3).
+"""States, phases and outcomes of the door task ([Banerjee 2015], Fig. 3).
 
 DETECT_DOOR → WALK_TO_DOOR → OPEN_DOOR [MOVE_TO_HANDLE → GRASP → TURN_HANDLE → PUSH or PULL
 → BLOCK (pull doors) → READY_TO_WALK] → WALK_THROUGH → DONE, plus PAUSED, MANUAL and FAILED.
@@ -60,8 +60,3 @@ class StateOutcome(str, Enum):
     SLIPPED = "slipped"          # the hand slipped off the handle: redo from MOVE_TO_HANDLE
     TIMEOUT = "timeout"
     ABORTED = "aborted"
-
-
-class DoorOpening(str, Enum):
-    PUSH = "push"
-    PULL = "pull"

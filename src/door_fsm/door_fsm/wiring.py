@@ -9,7 +9,8 @@ from __future__ import annotations
 
 from collections import deque
 
-from door_fsm.states import DoorOpening, StateOutcome, TaskState
+from door_contract.vocabulary import DoorOpening
+from door_fsm.states import StateOutcome, TaskState
 from door_fsm.work import STATE_WORK
 
 Wiring = dict[tuple[TaskState, StateOutcome], TaskState]

@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 
+from door_contract.vocabulary import WalkGoal
 from door_fsm.states import StateOutcome, TaskState
 
 
@@ -22,7 +23,7 @@ class WorkKind(str, Enum):
 @dataclass(frozen=True)
 class StateWork:
     kind: WorkKind
-    target: str                # footstep goal ("stand", "through") or motion name
+    target: str                # footstep goal (a WalkGoal) or motion name
     critical: bool             # waits for approval under SUPERVISED autonomy
     holds_handle: bool = False  # the hand is on the handle: a slip can happen
     release_first: bool = False  # open the hand before planning (READY_TO_WALK)
@@ -38,7 +39,7 @@ class StateWork:
 
 STATE_WORK: dict[TaskState, StateWork] = {
     TaskState.DETECT_DOOR: StateWork(WorkKind.DETECTION, "door", critical=True),
-    TaskState.WALK_TO_DOOR: StateWork(WorkKind.FOOTSTEPS, "stand", critical=True),
+    TaskState.WALK_TO_DOOR: StateWork(WorkKind.FOOTSTEPS, WalkGoal.STAND, critical=True),
     TaskState.MOVE_TO_HANDLE: StateWork(WorkKind.MOTION, "approach_handle", critical=False),
     TaskState.GRASP: StateWork(WorkKind.GRASP, "close", critical=False),
     TaskState.TURN_HANDLE: StateWork(WorkKind.MOTION, "turn_handle", critical=True, holds_handle=True),
@@ -46,5 +47,5 @@ STATE_WORK: dict[TaskState, StateWork] = {
     TaskState.PULL: StateWork(WorkKind.MOTION, "pull_door", critical=False, holds_handle=True),
     TaskState.BLOCK: StateWork(WorkKind.MOTION, "block_door", critical=False, holds_handle=True),
     TaskState.READY_TO_WALK: StateWork(WorkKind.MOTION, "ready_to_walk", critical=False, release_first=True),
-    TaskState.WALK_THROUGH: StateWork(WorkKind.FOOTSTEPS, "through", critical=True),
+    TaskState.WALK_THROUGH: StateWork(WorkKind.FOOTSTEPS, WalkGoal.THROUGH, critical=True),
 }

@@ -1,11 +1,11 @@
 """Forward kinematics, frame Jacobians and centre of mass through Pinocchio.
 
 The model is the profile's URDF with a **fixed base** at ``profile.base_frame`` (quasi-static
-manipulation: the feet do not move while the arm does, seed 001 Sec. IV). Poses are 4×4
+manipulation: the feet do not move while the arm does, [Banerjee 2015] Sec. IV). Poses are 4×4
 transforms in the base frame; pass ``base_pose`` (base in world/odom) to get world
 quantities. Jacobians are ``LOCAL_WORLD_ALIGNED``: rows (v_x, v_y, v_z, ω_x, ω_y, ω_z) of the
 frame origin expressed in the base axes, so that for a small joint step δq the frame moves
-by J δq (used by Q3 and the Cartesian constraints of seed 001 eq. 5).
+by J δq (used by Q3 and the Cartesian constraints of [Banerjee 2015] eq. 5).
 
 An optimiser asks for several frames' poses, Jacobians and the centre of mass at one
 waypoint in a row: the kinematics of the last configuration are kept (one forward pass,
@@ -21,8 +21,9 @@ from dataclasses import dataclass, field
 import numpy as np
 import pinocchio as pin
 
+from door_contract.vocabulary import Side
 from door_robot.errors import RobotModelError
-from door_robot.profile import RobotProfile, Side
+from door_robot.profile import RobotProfile
 
 
 @dataclass

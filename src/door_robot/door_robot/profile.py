@@ -10,27 +10,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from enum import Enum
 from pathlib import Path
 from typing import Any
 
 import yaml
 
+from door_contract.vocabulary import Side
 from door_robot.errors import RobotModelError
 from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
 
 
-class Side(str, Enum):
-    LEFT = "left"
-    RIGHT = "right"
-
-    @property
-    def other(self) -> Side:
-        return Side.RIGHT if self is Side.LEFT else Side.LEFT
-
-
 @dataclass(frozen=True)
-class ArmChain:
+class ArmSpec:
     """The joints that move one hand (torso first), its TCP parent frame and grasp offset."""
 
     joints: tuple[str, ...]
@@ -41,7 +32,7 @@ class ArmChain:
 
 @dataclass(frozen=True)
 class WalkingLimits:
-    """Footstep limits of the robot (seed 001 Sec. II: quasi-static walking)."""
+    """Footstep limits of the robot ([Banerjee 2015] Sec. II: quasi-static walking)."""
 
     max_stride: float  # m forward per step
     max_side_step: float  # m lateral per step
@@ -60,14 +51,14 @@ class RobotProfile:
     urdf_path: Path
     base_frame: str
     base_height: float  # m, base frame above the sole plane in the nominal posture
-    arms: dict  # Side -> ArmChain
+    arms: dict  # Side -> ArmSpec
     head_camera_frame: str
     feet: dict  # Side -> sole frame name
     nominal_posture: dict  # joint -> rad
     walking: WalkingLimits
     walking_posture: dict = field(default_factory=dict)  # joint -> rad over the nominal posture
 
-    def arm(self, side: Side) -> ArmChain:
+    def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
 
     def tcp_frame(self, side: Side) -> str:
@@ -113,10 +104,14 @@ def load_profile(name_or_path: str = "talos") -> RobotProfile:
         raise RobotModelError(f"robot profile {name_or_path!r} is incomplete: {error}") from None
 
 
+def _xyz(values: Any) -> tuple[float, float, float]:
+    x, y, z = (float(v) for v in values)
+    return x, y, z
+
+
 def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
-    arms = {Side(side): ArmChain(tuple(arm["joints"]), arm["tcp_parent_frame"],
-                                 tuple(float(v) for v in arm["grasp_offset"]),
-                                 arm.get("gripper_joint"))
+    arms = {Side(side): ArmSpec(tuple(arm["joints"]), arm["tcp_parent_frame"], _xyz(arm["grasp_offset"]),
+                                arm.get("gripper_joint"))
             for side, arm in document["arms"].items()}
     posture = {name: float(value) for name, value in document["nominal_posture"].items()}
     if not all(math.isfinite(v) for v in posture.values()):

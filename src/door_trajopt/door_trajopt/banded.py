@@ -6,8 +6,8 @@ The constant part of the Hessian used as CHOMP's Riemannian metric is
 
     M = A_1 \otimes W + I_n \otimes P,
 
-(smoothness ``A = A_1 (x) W`` of seed 000 eq. (2) plus the diagonal posture
-weights ``P``, seed 001 ``Q2``).  In the row-major layout ``xi[t*m + j]`` its
+(smoothness ``A = A_1 (x) W`` of [Zucker 2013] eq. (2) plus the diagonal posture
+weights ``P``, [Banerjee 2015] ``Q2``).  In the row-major layout ``xi[t*m + j]`` its
 DOF-``j`` block is ``M_j = w_j A_1 + p_j I``: banded, SPD, independent of the
 other DOF.  Hence ``M^{-1} r`` reshapes ``r`` to ``n x m`` and solves every
 column with the banded Cholesky factor of its DOF -- ``O(n m)`` as the seed
@@ -75,7 +75,7 @@ class KroneckerBandedCholesky:
 
         Each DOF block of a right-hand side column is solved only if it is
         non-zero: the columns of ``H^T`` touch few DOF (a joint-value row
-        touches one), which halves the work for seed 000's ``H``.
+        touches one), which halves the work for [Zucker 2013]'s ``H``.
         """
         columns = 1 if rhs.ndim == 1 else rhs.shape[1]
         blocks = rhs.reshape(self.n_free, self.n_dof, columns)

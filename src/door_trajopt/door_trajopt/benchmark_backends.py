@@ -1,7 +1,7 @@
-"""Benchmark of the backends on the seed-000-sized door opening problem.
+"""Benchmark of the backends on the [Zucker 2013]-sized door opening problem.
 
 Run ``python -m door_trajopt.benchmark_backends`` (``--help`` for options).
-Seed 000 (HUBO+, Sec. III-A) reports ~40 s for its constrained CHOMP with
+[Zucker 2013] (HUBO+, Sec. III-A) reports ~40 s for its constrained CHOMP with
 ``n = 104``, ``m = 9``, ``k = 181`` on a 2.5 GHz Core 2 Duo, dominated by the
 dense ``181 x 181`` solve for ``Q``.  This prints, for constrained CHOMP, the
 TrajOpt-style SQP (both constraint handlings) and scipy's SLSQP as a naive
@@ -41,7 +41,7 @@ class Solver(Protocol):
 
 
 PAPER_OPTIMISATION_TIME_S = 40.0
-"""Seed 000 Sec. III-A: "Trajectory optimization takes approximately 40 s"."""
+"""[Zucker 2013] Sec. III-A: "Trajectory optimization takes approximately 40 s"."""
 
 FEASIBILITY_TOLERANCE = 1e-6
 """Constraint threshold (rad, m) used to classify the SLSQP baseline."""
@@ -58,7 +58,7 @@ class BenchmarkRow:
 
     @property
     def paper_ratio(self) -> float:
-        """Paper time divided by ours (> 1: faster than seed 000)."""
+        """Paper time divided by ours (> 1: faster than [Zucker 2013])."""
         return PAPER_OPTIMISATION_TIME_S / self.seconds
 
 
@@ -79,7 +79,7 @@ def timed_solver(
 
 
 def run_chomp(case: BenchmarkCase, repeats: int) -> BenchmarkRow:
-    """Time constrained CHOMP (seed 000 eq. (5))."""
+    """Time constrained CHOMP ([Zucker 2013] eq. (5))."""
     result, warm, cold = timed_solver(
         lambda: ChompSolver(case.problem), case.initial_guess, repeats
     )
@@ -159,7 +159,7 @@ def format_rows(rows: Sequence[BenchmarkRow], reference_cost: float) -> str:
 
 
 def describe(case: BenchmarkCase) -> str:
-    """Problem size line (seed 000: n = 104, m = 9, k = 181)."""
+    """Problem size line ([Zucker 2013]: n = 104, m = 9, k = 181)."""
     problem = case.problem
     rows = sum(c.size for c in problem.constraints)
     names = ", ".join(f"{c.name}={c.size}" for c in problem.constraints)
@@ -194,7 +194,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         print("running scipy SLSQP (dense, several minutes) ...", flush=True)
         rows.append(run_slsqp(case, arguments.slsqp_max_iterations))
     print(format_rows(rows, reference_cost=rows[0].result.cost))
-    print(f"paper figure: {PAPER_OPTIMISATION_TIME_S:.0f} s (seed 000 Sec. III-A, 2010 Core 2 Duo)")
+    print(f"paper figure: {PAPER_OPTIMISATION_TIME_S:.0f} s ([Zucker 2013] Sec. III-A, 2010 Core 2 Duo)")
     return 0
 
 

@@ -1,4 +1,4 @@
-"""Benchmark: each door motion on TALOS, both backends (seed 001: 10.1–21 s per plan).
+"""Benchmark: each door motion on TALOS, both backends ([Banerjee 2015]: 10.1–21 s per plan).
 
     python -m door_trajopt.benchmark_motions [--repeats 3]
 
@@ -27,14 +27,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import DoorModel
 from door_trajopt.library import Backend, MotionLibrary
 from door_trajopt.motions import Motion, MotionSetup, start_door_for, support_polygon
 
-# seed 001 Sec. V: 10.1 s per plan for the pull door, 15.5 s for the push door (one guess)
+# [Banerjee 2015] Sec. V: 10.1 s per plan for the pull door, 15.5 s for the push door (one guess)
 PUSH_SEQUENCE = {Motion.APPROACH_HANDLE: 10.1, Motion.TURN_HANDLE: 10.1, Motion.PUSH_DOOR: 15.5}
 PULL_SEQUENCE = {Motion.APPROACH_HANDLE: 10.1, Motion.TURN_HANDLE: 10.1, Motion.PULL_DOOR: 10.1,
                  Motion.BLOCK_DOOR: 10.1, Motion.READY_TO_WALK: 10.1}

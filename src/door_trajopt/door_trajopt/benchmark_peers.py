@@ -30,7 +30,7 @@ from door_trajopt.tesseract_peer import INSTALL_COMMAND, TrajOptPeer, tesseract_
 
 TOLERANCE = 1e-5  # m / rad: every solver's constraint tolerance (the motion library's)
 MAX_ITERATIONS = 300
-PAPER_SECONDS = 10.1  # seed 001 Sec. V: one TrajOpt plan of the pull door
+PAPER_SECONDS = 10.1  # [Banerjee 2015] Sec. V: one TrajOpt plan of the pull door
 TRAJOPT = "tesseract TrajOpt (OSQP)"
 
 
@@ -109,7 +109,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"tesseract's TrajOpt is not installed (an optional extra): {INSTALL_COMMAND}\n"
               "skipping the peer; the project's solvers alone:")
     print(format_rows(run(args.repeats, with_peer)))
-    print(f"paper figure: {PAPER_SECONDS} s for one TrajOpt plan (seed 001 Sec. V); constraint tolerance "
+    print(f"paper figure: {PAPER_SECONDS} s for one TrajOpt plan ([Banerjee 2015] Sec. V); constraint tolerance "
           f"{TOLERANCE:g} for every solver, feasible = every pose and limit within {10 * TOLERANCE:g}")
     return 0
 

@@ -11,8 +11,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side
 
 
 @dataclass

@@ -1,13 +1,13 @@
-r"""Constrained CHOMP (seed 000 Sec. II-B, after Zucker et al.'s CHOMP).
+r"""Constrained CHOMP ([Zucker 2013] Sec. II-B, after Zucker et al.'s CHOMP).
 
-Each iteration minimises the linearised Lagrangian of seed 000 eq. (4),
+Each iteration minimises the linearised Lagrangian of [Zucker 2013] eq. (4),
 
 .. math::
 
     \min_\delta\; \delta^T \nabla f(\xi) + \frac{1}{2\alpha} \delta^T M \delta
     \quad\text{s.t.}\quad h(\xi) + H \delta = 0,
 
-whose solution is seed 000 eq. (5):
+whose solution is [Zucker 2013] eq. (5):
 
 .. math::
 
@@ -16,9 +16,9 @@ whose solution is seed 000 eq. (5):
 
 It is evaluated as :math:`y = M^{-1}\nabla f`, :math:`Z = M^{-1} H^T`,
 :math:`S = H Z` (``k x k``, dense Cholesky -- the 181 x 181 solve that took
-seed 000 most of its 40 s), multipliers :math:`\lambda = S^{-1}(h/\alpha - H y)`
+[Zucker 2013] most of its 40 s), multipliers :math:`\lambda = S^{-1}(h/\alpha - H y)`
 and :math:`\delta = -\alpha (y + Z\lambda)` -- algebraically identical to
-eq. (5), and never forming :math:`M^{-1}`.  The metric ``M`` is seed 000's
+eq. (5), and never forming :math:`M^{-1}`.  The metric ``M`` is [Zucker 2013]'s
 ``A`` (plus the constant posture Hessian when a posture cost is present),
 factorised **once** per problem with banded Cholesky per DOF block
 (:mod:`door_trajopt.banded`); least-squares (``Q3``) costs add their
@@ -49,12 +49,12 @@ from scipy.linalg import LinAlgError, cho_factor, cho_solve
 
 from door_trajopt.banded import KroneckerBandedCholesky, LowRankUpdatedMetric, MetricSolver
 from door_trajopt.evaluation import (
-    guarded_solve,
     PointModel,
     PointValues,
     ProblemEvaluator,
     RunSummary,
     build_result,
+    guarded_solve,
 )
 from door_trajopt.problem import FloatArray, TrajectoryProblem
 from door_trajopt.result import OptimizationResult
@@ -67,7 +67,7 @@ REGULARISATIONS = (0.0, 1e-12, 1e-9, 1e-6)
 
 @dataclass(frozen=True)
 class ChompOptions:
-    """Options of :class:`ChompSolver` (seed 000 Sec. II-B).
+    """Options of :class:`ChompSolver` ([Zucker 2013] Sec. II-B).
 
     * ``step_size`` -- ``alpha`` of eq. (4)-(5), dimensionless, ``(0, 1]``;
       ``1`` is the full Newton step of the quadratic part.
@@ -222,7 +222,7 @@ class ChompSolver:
         return "stalled: no merit decrease along the constrained CHOMP step"
 
     def _stopped_decreasing(self, previous: PointValues, current: PointValues) -> bool:
-        """Seed 000's rule: objective no longer decreasing and ``h`` feasible."""
+        """[Zucker 2013]'s rule: objective no longer decreasing and ``h`` feasible."""
         decrease = previous.cost - current.cost
         threshold = self._options.cost_tolerance * max(1.0, abs(current.cost))
         feasible = self._evaluator.violation(current).amount <= self._options.constraint_tolerance
@@ -331,7 +331,7 @@ class ChompSolver:
     def _constrained_step(
         self, model: PointModel, system: ActiveSystem, metric: MetricSolver
     ) -> ConstrainedStep:
-        """``delta = -alpha M^{-1} (grad f + H^T lambda)``, i.e. seed 000 eq. (5)."""
+        """``delta = -alpha M^{-1} (grad f + H^T lambda)``, i.e. [Zucker 2013] eq. (5)."""
         alpha = self._options.step_size
         descent = metric.solve(model.gradient)
         if system.values.size == 0:

@@ -1,7 +1,7 @@
 """Stacking named constraint blocks into ``h(xi)``/``g(xi)`` and their Jacobians.
 
 The stacked Jacobian is restricted to the free waypoints' columns (``H`` of
-seed 000 Sec. II-B is ``k x (n m)`` over the free trajectory only).  Values
+[Zucker 2013] Sec. II-B is ``k x (n m)`` over the free trajectory only).  Values
 are checked for NaN/inf so that a broken callback ends a solve with
 ``INVALID_INPUT`` naming the block instead of poisoning the linear algebra.
 """

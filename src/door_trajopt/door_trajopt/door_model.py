@@ -1,4 +1,4 @@
-"""The door as part of the kinematic chain (seed 000 Sec. III: hinge and handle are DOFs).
+"""The door as part of the kinematic chain ([Zucker 2013] Sec. III: hinge and handle are DOFs).
 
 While the hand holds the handle, robot and door form a closed chain: at every grasped
 waypoint the hand's pose must equal :meth:`DoorModel.grasp_pose` of the door's hinge
@@ -11,10 +11,9 @@ axis towards the hinge side, and the grasp point lies ``lever_radius`` from the 
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
-
-import math
 
 import numpy as np
 import pinocchio as pin

@@ -1,7 +1,7 @@
 r"""Zero- and first-order evaluation of a problem at an iterate, shared by both backends.
 
 Also defines the exact :math:`\ell_1` merit function used for step acceptance
-(TrajOpt's penalty formulation, Schulman et al.; seed 001 Sec. IV adopts it):
+(TrajOpt's penalty formulation, Schulman et al.; [Banerjee 2015] Sec. IV adopts it):
 
 .. math::
 
@@ -110,7 +110,7 @@ class ProblemEvaluator:
     def pinned_variables(self) -> npt.NDArray[np.int64]:
         """Free variables fixed by a structurally single-entry equality row.
 
-        Such a row (e.g. seed 000's "hinge fixed" rows) already pins the variable;
+        Such a row (e.g. [Zucker 2013]'s "hinge fixed" rows) already pins the variable;
         also treating its joint limit as active would make the active rows
         linearly dependent (singular ``H M^{-1} H^T`` in CHOMP, a degenerate QP
         that OSQP cannot polish), so the backends leave these limits to the

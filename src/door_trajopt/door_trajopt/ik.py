@@ -1,6 +1,6 @@
 """Inverse kinematics of an arm chain by damped least squares (for key poses / initial guesses).
 
-Seed 001 Sec. IV and seed 000 Sec. III build initial trajectories by interpolating key
+[Banerjee 2015] Sec. IV and [Zucker 2013] Sec. III build initial trajectories by interpolating key
 poses solved by IK. Each iteration solves δq = J⁺e + N k (q_mid − q) with the damped pseudo-inverse
 J⁺ = V diag(σ/(σ² + λ²)) Uᵀ (J = U Σ Vᵀ), the 6-D pose error e = (p* − p, log(R* Rᵀ)) and a
 pull towards the middle of the joint range (so later motions keep room to move) projected

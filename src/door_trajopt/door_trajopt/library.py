@@ -1,6 +1,6 @@
 """Plan door motions: build the problem, optimise (SQP or constrained CHOMP), time it.
 
-Multi-start as seed 001 Sec. IV: first the IK-keyed initial guess (or the cached last
+Multi-start as [Banerjee 2015] Sec. IV: first the IK-keyed initial guess (or the cached last
 feasible solution of the same motion when it starts where this one does), then guesses
 through a random middle state. The first feasible result wins.
 
@@ -21,13 +21,19 @@ import numpy as np
 
 from door_contract.converters.trajectory import JointPath
 from door_trajopt.chomp import ChompOptions, ChompSolver
-from door_trajopt.motions import (Motion, MotionOptions, MotionProblem, MotionSetup, anchored_to_hand, build_motion,
-                                  check_start_door)
+from door_trajopt.motions import (
+    Motion,
+    MotionOptions,
+    MotionProblem,
+    MotionSetup,
+    anchored_to_hand,
+    build_motion,
+    check_start_door,
+)
 from door_trajopt.problem import TrajoptError
 from door_trajopt.result import OptimizationResult, Outcome
 from door_trajopt.sqp import SqpOptions, SqpSolver
 from door_trajopt.timing import time_parameterise
-
 
 MAX_ATTEMPT_SCALE = 4  # a repeat gets at most this many times the first attempt's iterations
 
@@ -57,7 +63,7 @@ class MotionPlan:
 @dataclass
 class MotionLibrary:
     options: MotionOptions = field(default_factory=MotionOptions)
-    starts: int = 3  # initial guesses tried (seed 001 Sec. IV: multiple random guesses)
+    starts: int = 3  # initial guesses tried ([Banerjee 2015] Sec. IV: multiple random guesses)
     velocity_scale: float = 0.5
     door_velocity_limits: tuple[float, float] = (0.15, 0.5)  # rad/s of hinge and handle: a door is heavy
     max_iterations: int = 120  # per initial guess (SQP QP solves / CHOMP updates)

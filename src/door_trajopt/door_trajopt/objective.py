@@ -2,7 +2,7 @@ r"""The total cost ``f(xi)`` of a :class:`TrajectoryProblem` on the free vector.
 
 .. math::
 
-    f(\xi) = \underbrace{\tfrac12 \xi^T A \xi + \xi^T b + c}_{\text{seed 000 (2), seed 001 } Q_1}
+    f(\xi) = \underbrace{\tfrac12 \xi^T A \xi + \xi^T b + c}_{\text{[Zucker 2013] (2), [Banerjee 2015] } Q_1}
       + \underbrace{\tfrac12 \sum_t (q_t - q_{nom})^T P (q_t - q_{nom})}_{Q_2}
       + \underbrace{\sum_r \tfrac12 w_r \lVert r(\xi) \rVert^2}_{Q_3}
 

@@ -8,7 +8,7 @@ waypoints, waypoint 0 fixed at the nominal posture, the URDF joint limits, and t
 
     c(q) = \\sum_{t=1}^{T-1} \\lVert q_t - q_{t-1} \\rVert^2,
 
-TrajOpt's joint-velocity cost (seed 001 ``Q1``; the project's VELOCITY smoothness with
+TrajOpt's joint-velocity cost ([Banerjee 2015] ``Q1``; the project's VELOCITY smoothness with
 weight 2, since that one is ``1/2 w sum``). Constraints, both 6-D TCP pose equalities
 ``(p - p*, log(R R*^T)) = 0``:
 
@@ -29,13 +29,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import rotation_about_up, rotation_vector
 from door_trajopt.ik import pose_error
-from door_trajopt.problem import (ConstraintKind, Derivative, JointLimits, SmoothnessSpec,
-                                  TrajectoryProblem)
+from door_trajopt.problem import ConstraintKind, Derivative, JointLimits, SmoothnessSpec, TrajectoryProblem
 from door_trajopt.waypoint_constraints import waypoint_constraint
 
 WAYPOINTS = 100

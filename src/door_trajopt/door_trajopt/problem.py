@@ -1,31 +1,31 @@
 """Backend-agnostic description of a trajectory-optimisation problem.
 
 Both backends (:mod:`door_trajopt.chomp`, after the HUBO+ constrained CHOMP of
-seed 000, and :mod:`door_trajopt.sqp`, after the WPI-CMU TrajOpt set-up of
-seed 001) consume the same :class:`TrajectoryProblem`.
+[Zucker 2013], and :mod:`door_trajopt.sqp`, after the WPI-CMU TrajOpt set-up of
+[Banerjee 2015]) consume the same :class:`TrajectoryProblem`.
 
 Trajectory layout
 -----------------
 A trajectory is an ``(n, m)`` array: ``n`` waypoints ``q_0 .. q_{n-1}`` of
 ``m`` degrees of freedom (robot joints *and* door joints such as the hinge and
-handle angles, seed 000 Sec. III).  Wherever a flat vector ``xi`` is used it is
+handle angles, [Zucker 2013] Sec. III).  Wherever a flat vector ``xi`` is used it is
 the **row-major** flattening ``xi[t*m + j] = q_t[j]`` (``trajectory.reshape(-1)``),
 so waypoint ``t`` occupies the contiguous slice ``xi[t*m:(t+1)*m]``.
 
 Waypoint 0 is always fixed to :attr:`TrajectoryProblem.start`; waypoint
-``n-1`` is fixed to :attr:`TrajectoryProblem.end` when it is given (seed 000
-fixes both endpoints ``q(0)`` and ``q(n+1)``; seed 001's motions fix only the
+``n-1`` is fixed to :attr:`TrajectoryProblem.end` when it is given ([Zucker 2013]
+fixes both endpoints ``q(0)`` and ``q(n+1)``; [Banerjee 2015]'s motions fix only the
 start and constrain the end).  The remaining *free* waypoints are contiguous.
 
-Costs (seed 001 eq. (4), seed 000 eq. (2))
+Costs ([Banerjee 2015] eq. (4), [Zucker 2013] eq. (2))
 -------------------------------------------
 ``f(xi) = smoothness + posture + sum(residual costs)`` with
 
 * smoothness: the finite-difference metric of :mod:`door_trajopt.smoothness`
-  weighted per DOF (the ``Q1`` term of seed 001, the ``A`` of seed 000);
+  weighted per DOF (the ``Q1`` term of [Banerjee 2015], the ``A`` of [Zucker 2013]);
 * posture: ``1/2 sum_t (q_t - q_nom)^T diag(w) (q_t - q_nom)`` (``Q2``);
 * residual costs: ``1/2 w ||r(xi)||^2`` for a residual ``r`` with Jacobian,
-  e.g. a Cartesian pose error ``d_Delta`` (``Q3``, seed 001 eq. (5)).
+  e.g. a Cartesian pose error ``d_Delta`` (``Q3``, [Banerjee 2015] eq. (5)).
 
 Constraints
 -----------
@@ -141,10 +141,10 @@ class Constraint:
 
 @dataclass(frozen=True)
 class ResidualCost:
-    """Least-squares cost ``1/2 * weight * ||r(xi)||^2`` (seed 001 ``Q3``).
+    """Least-squares cost ``1/2 * weight * ||r(xi)||^2`` ([Banerjee 2015] ``Q3``).
 
     ``residual`` returns ``r`` (e.g. the masked pose error ``d_Delta`` of
-    seed 001 eq. (5) stacked over waypoints) and ``jacobian`` its derivative.
+    [Banerjee 2015] eq. (5) stacked over waypoints) and ``jacobian`` its derivative.
     The backends use the Gauss-Newton Hessian ``weight * J^T J``.
     """
 
@@ -209,12 +209,12 @@ class PostureCost:
 
 
 class Derivative(enum.Enum):
-    """Which finite difference the smoothness metric penalises (seed 000 eq. (1))."""
+    """Which finite difference the smoothness metric penalises ([Zucker 2013] eq. (1))."""
 
     VELOCITY = 1
-    """First differences ``q_t - q_{t-1}``: seed 001's joint displacement ``Q1``."""
+    """First differences ``q_t - q_{t-1}``: [Banerjee 2015]'s joint displacement ``Q1``."""
     ACCELERATION = 2
-    """Second differences ``q_{t-1} - 2 q_t + q_{t+1}``: seed 000 Sec. II-A."""
+    """Second differences ``q_{t-1} - 2 q_t + q_{t+1}``: [Zucker 2013] Sec. II-A."""
 
 
 @dataclass(frozen=True)
@@ -224,7 +224,7 @@ class SmoothnessSpec:
     ``weights`` (length ``m``, ``None``: ones) scale each DOF's term, i.e.
     ``Q1 = diag(weights)``.  ``at_rest`` adds ghost waypoints ``q_{-1} = q_0``
     and ``q_n = q_{n-1}`` so accelerations at both ends are penalised too (the
-    robot starts and stops at rest); without it the metric is seed 000's
+    robot starts and stops at rest); without it the metric is [Zucker 2013]'s
     interior-only ``K``, which is positive definite only with a fixed end.
     """
 
@@ -238,7 +238,7 @@ class TrajectoryProblem:
     """Everything a backend needs; see the module docstring for conventions.
 
     ``smoothness`` selects the finite-difference metric and its per-DOF
-    weights (the ``A`` of seed 000 eq. (2), the ``Q1`` of seed 001 eq. (4)).
+    weights (the ``A`` of [Zucker 2013] eq. (2), the ``Q1`` of [Banerjee 2015] eq. (4)).
     """
 
     n_waypoints: int
@@ -285,7 +285,7 @@ class TrajectoryProblem:
         if needs_end and self.end is None:
             raise TrajoptError(
                 "smoothness.at_rest=False with accelerations needs a fixed end waypoint "
-                "(otherwise A = K^T K is singular, seed 000 Sec. II-A)"
+                "(otherwise A = K^T K is singular, [Zucker 2013] Sec. II-A)"
             )
         return SmoothnessSpec(spec.derivative, spec.at_rest, weights)
 
@@ -359,8 +359,8 @@ class TrajectoryProblem:
     def linear_interpolation(self, goal: FloatArray) -> FloatArray:
         """Straight line in configuration space from ``start`` to ``goal``.
 
-        The default initial guess of both papers (seed 001 Sec. IV, the
-        key-pose interpolation of seed 000 Sec. III with two key poses).
+        The default initial guess of both papers ([Banerjee 2015] Sec. IV, the
+        key-pose interpolation of [Zucker 2013] Sec. III with two key poses).
         """
         goal_vector = as_float_vector(goal, self.n_dof, "goal")
         ratio = np.linspace(0.0, 1.0, self.n_waypoints)[:, None]

@@ -2,7 +2,7 @@ r"""Fixed-sparsity layout of the TrajOpt QP subproblem for OSQP.
 
 Variables ``z = [d, s+, s-, t]``: the step ``d`` on the free trajectory,
 equality slacks ``s+ - s- = h + H d`` and inequality slacks ``t >= g + G d``
-(TrajOpt's exact l1 penalty, seed 001 Sec. IV adopts TrajOpt).  The QP is
+(TrajOpt's exact l1 penalty, [Banerjee 2015] Sec. IV adopts TrajOpt).  The QP is
 
 .. math::
 

@@ -1,6 +1,6 @@
-r"""CHOMP finite-difference smoothness objective (seed 000 Sec. II-A).
+r"""CHOMP finite-difference smoothness objective ([Zucker 2013] Sec. II-A).
 
-Seed 000 eq. (1) writes smoothness as a sum of squared finite differences of
+[Zucker 2013] eq. (1) writes smoothness as a sum of squared finite differences of
 every DOF ``j`` over the waypoints.  With a finite-differencing matrix ``K``
 (velocities in the seed's printed example, **accelerations** in its door
 experiments) and the free waypoints stacked in ``xi``, eq. (2) reads
@@ -16,7 +16,7 @@ costs ``O(m n)`` with a banded Cholesky factor.
 
 Here ``K_1`` is built for **one** DOF over all ``n`` waypoints and split into
 its free-waypoint columns ``K`` and fixed-waypoint columns ``K_fix``; with
-per-DOF weights ``W = diag(w)`` (seed 001's ``Q1``) and the row-major layout
+per-DOF weights ``W = diag(w)`` ([Banerjee 2015]'s ``Q1``) and the row-major layout
 ``xi[t*m + j]`` of :mod:`door_trajopt.problem`:
 
 .. math::
@@ -34,7 +34,7 @@ interior waypoints; with ``at_rest`` the ghost waypoints ``q_{-1} = q_0`` and
 ``q_n = q_{n-1}`` add the rows ``q_1 - q_0`` and ``q_{n-2} - q_{n-1}`` (zero
 velocity at both ends), which keeps ``A`` positive definite with a free end.
 For velocities the rows are ``q_t - q_{t-1}``.  The constant ``1/dt^2`` (or
-``1/dt^4``) factor is omitted as in seed 000.
+``1/dt^4``) factor is omitted as in [Zucker 2013].
 """
 
 from __future__ import annotations
@@ -53,7 +53,7 @@ def finite_difference_rows(
 ) -> sp.csr_matrix:
     """``K_1``: finite differences of one DOF over all ``n_waypoints``.
 
-    Returns a ``(rows, n_waypoints)`` sparse matrix (seed 000 eq. (1)).
+    Returns a ``(rows, n_waypoints)`` sparse matrix ([Zucker 2013] eq. (1)).
     """
     if derivative is Derivative.VELOCITY:
         return sp.diags([-1.0, 1.0], [0, 1], shape=(n_waypoints - 1, n_waypoints), format="csr")
@@ -80,7 +80,7 @@ def upper_banded(matrix: sp.spmatrix, bandwidth: int) -> FloatArray:
 
 @dataclass(frozen=True)
 class SmoothnessMetric:
-    """Constant quadratic ``f(xi) = 1/2 xi^T A xi + xi^T b + c`` of seed 000 eq. (2).
+    """Constant quadratic ``f(xi) = 1/2 xi^T A xi + xi^T b + c`` of [Zucker 2013] eq. (2).
 
     Attributes are for the free waypoints only (``n_free`` rows of ``K``):
     ``k_free`` is ``K``, ``endpoint_term`` is ``E``, ``weights`` is ``diag(W)``.
@@ -144,7 +144,7 @@ class SmoothnessMetric:
         return np.asarray(self.k_free @ waypoints) + self.endpoint_term
 
     def value(self, free: FloatArray) -> float:
-        """``f(xi)`` of seed 000 eq. (2)."""
+        """``f(xi)`` of [Zucker 2013] eq. (2)."""
         residual = self.differences(free)
         return 0.5 * float(np.sum(self.weights * np.sum(residual**2, axis=0)))
 
@@ -154,7 +154,7 @@ class SmoothnessMetric:
         return np.asarray(self.k_free.T @ residual).reshape(-1)
 
     def unconstrained_minimum(self) -> FloatArray:
-        """``xi* = -A^{-1} b`` (seed 000 eq. (3)), via a sparse solve."""
+        """``xi* = -A^{-1} b`` ([Zucker 2013] eq. (3)), via a sparse solve."""
         a_single = self.single_dof_matrix().tocsc()
         rhs = -np.asarray(self.k_free.T @ self.endpoint_term)
         return np.asarray(spla.spsolve(a_single, rhs)).reshape(-1)

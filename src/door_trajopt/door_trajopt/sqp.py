@@ -1,6 +1,6 @@
-r"""TrajOpt-style sequential quadratic programming with OSQP (seed 001 Sec. IV).
+r"""TrajOpt-style sequential quadratic programming with OSQP ([Banerjee 2015] Sec. IV).
 
-Seed 001 plans with a modified TrajOpt: cost eq. (4) (joint displacement
+[Banerjee 2015] plans with a modified TrajOpt: cost eq. (4) (joint displacement
 ``Q1``, posture ``Q2``, Cartesian pose error ``Q3``) subject to joint limits,
 joint/Cartesian posture equalities and half-plane inequalities, eq. (3).
 TrajOpt (Schulman et al.) solves it by SQP on the exact l1 penalty
@@ -52,15 +52,15 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from door_trajopt.evaluation import (
-    guarded_solve,
     PointModel,
     PointValues,
     ProblemEvaluator,
     RunSummary,
     build_result,
+    guarded_solve,
 )
-from door_trajopt.problem import FloatArray, TrajectoryProblem, TrajoptError
 from door_trajopt.lagrangian_curvature import BlockCurvature, block_pattern
+from door_trajopt.problem import FloatArray, TrajectoryProblem, TrajoptError
 from door_trajopt.qp_layout import QpLayout
 from door_trajopt.result import OptimizationResult
 from door_trajopt.validation import require_in_range, require_int_at_least
@@ -93,7 +93,7 @@ class ConstraintHandling(enum.Enum):
 
 @dataclass(frozen=True)
 class SqpOptions:
-    """Options of :class:`SqpSolver` (TrajOpt-style, seed 001 Sec. IV).
+    """Options of :class:`SqpSolver` (TrajOpt-style, [Banerjee 2015] Sec. IV).
 
     Units: trust radii in the DOF units (rad, m) per variable; tolerances in
     the constraints' units; ratios dimensionless.
@@ -355,7 +355,7 @@ class SqpSolver:
 
         Estimate: the multipliers of ``min g^T d + 1/2 d^T P d`` s.t. the
         violated/active rows ``h + H d = 0``, i.e. ``S lambda = h - H P^{-1} g``
-        with ``S = H P^{-1} H^T`` (the CHOMP formula, seed 000 eq. (5)).  Unlike
+        with ``S = H P^{-1} H^T`` (the CHOMP formula, [Zucker 2013] eq. (5)).  Unlike
         a gradient-only estimate it is not zero when the guess already minimises
         the cost (a straight-line guess of a pure smoothness cost).
         """

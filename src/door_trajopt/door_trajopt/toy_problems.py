@@ -2,14 +2,14 @@ r"""Analytic door-opening test problems shared by tests and the benchmark.
 
 Both problems model, seen from above, a robot arm whose hand holds a door
 handle while the door swings about its vertical hinge: robot and door form a
-closed kinematic chain (seed 000 Sec. III), and the door's joints are part of
+closed kinematic chain ([Zucker 2013] Sec. III), and the door's joints are part of
 the optimised state.
 
 * :func:`door_arc_case` -- a planar 3-link arm plus the door hinge angle
   (``m = 4``): the hand must stay on the handle, which moves on a circle of
   radius ``r`` about the hinge, at every free waypoint; the hinge starts at
-  0 and must end at ``opening`` (40 deg, the pull of seed 001 Sec. IV-3).
-* :func:`seed000_sized_case` -- the size of seed 000's HUBO+ experiment:
+  0 and must end at ``opening`` (40 deg, the pull of [Banerjee 2015] Sec. IV-3).
+* :func:`seed000_sized_case` -- the size of [Zucker 2013]'s HUBO+ experiment:
   ``n = 104`` free waypoints between fixed end poses, ``m = 9`` (seven arm
   joints, door hinge, door handle) and ``k = 181`` equality rows: 46 fix the
   hinge, 55 hold the handle turned 45 deg, 80 keep the hand on the handle
@@ -317,7 +317,7 @@ SEED_REST_ARM = (-0.6, 0.5, 0.4, 0.3, 0.3, 0.2, 0.1)
 
 @dataclass(frozen=True)
 class SeedPhases:
-    """Waypoint windows ``[first, stop)`` of seed 000's door opening (Fig. 3 rows).
+    """Waypoint windows ``[first, stop)`` of [Zucker 2013]'s door opening (Fig. 3 rows).
 
     Reach and grasp with the hinge fixed (46 waypoints), then the door swing
     with the handle held turned (55), the hand on the handle over 40
@@ -337,12 +337,12 @@ class SeedPhases:
 def seed000_sized_case(
     handle_turn: float = np.deg2rad(45.0), final_opening: float = np.deg2rad(40.0)
 ) -> BenchmarkCase:
-    """Seed 000 size: ``n = 104`` free waypoints, ``m = 9``, ``k = 181``.
+    """[Zucker 2013] size: ``n = 104`` free waypoints, ``m = 9``, ``k = 181``.
 
     DOF: seven planar arm joints, door hinge (7), door handle (8).  Both end
-    poses are fixed (seed 000's ``q(0)``, ``q(n+1)``) and the smoothness is
-    seed 000's interior acceleration metric.  The guess is the straight line
-    between the end poses, as seed 001's default.
+    poses are fixed ([Zucker 2013]'s ``q(0)``, ``q(n+1)``) and the smoothness is
+    [Zucker 2013]'s interior acceleration metric.  The guess is the straight line
+    between the end poses, as [Banerjee 2015]'s default.
     """
     n_waypoints, n_dof = 106, 9
     shape = TrajectoryShape(n_waypoints, n_dof)

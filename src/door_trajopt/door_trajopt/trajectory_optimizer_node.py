@@ -22,26 +22,45 @@ from std_msgs.msg import String
 
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.joint_state import joint_state_to_positions
-
 from door_contract.converters.trajectory import joint_path_to_msg
 from door_contract.door_estimates import door_estimate_problem
 from door_contract.errors import ContractError
-from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
-                                        create_contract_subscription, declare_parameters, run_node)
-from door_contract.planner_inputs import PlannerInputs
+from door_contract.node_support import (
+    Heartbeat,
+    as_parameter_error,
+    create_contract_publisher,
+    create_contract_subscription,
+    declare_parameters,
+    run_node,
+)
+from door_contract.payloads import (
+    DoorEstimate,
+    MotionRequest,
+    OutcomeStatus,
+    PlanningOutcome,
+    encode,
+    without_non_finite,
+)
 from door_contract.planner_desk import PlannerDesk
+from door_contract.planner_inputs import PlannerInputs
 from door_contract.planner_service import Finished
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
-from door_contract.payloads import (DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, encode,
-                                    without_non_finite)
 from door_contract.topics import Topics
+from door_contract.vocabulary import DoorOpening, grasp_hand
 from door_robot.errors import RobotModelError
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import Side, load_profile
+from door_robot.profile import load_profile
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import Backend, MotionLibrary, MotionPlan
-from door_trajopt.motions import DoorStateOutOfRange, Motion, MotionOptions, MotionSetup, start_door_for, support_polygon
+from door_trajopt.motions import (
+    DoorStateOutOfRange,
+    Motion,
+    MotionOptions,
+    MotionSetup,
+    start_door_for,
+    support_polygon,
+)
 from door_trajopt.parameters import NODE_NAME, OPTIMIZER_PARAMETERS
 
 
@@ -100,8 +119,9 @@ class TrajectoryOptimizerNode(Node):
     def _deliver_one(self, finished: Finished) -> None:
         """On the executor thread: one outcome per finished request, and the trajectory if proposed."""
         request, plan = finished.request, finished.result
-        answer = lambda status, reason, plan=None, stamp=-1: self._answer(
-            request.request_id, request.motion, request.backend, status, reason, plan, stamp)
+        def answer(status, reason, plan=None, stamp=-1):
+            return self._answer(
+                    request.request_id, request.motion, request.backend, status, reason, plan, stamp)
         if finished.dropped:
             return answer(OutcomeStatus.SUPERSEDED, finished.dropped)
         if isinstance(finished.error, (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)):
@@ -133,19 +153,17 @@ class TrajectoryOptimizerNode(Node):
             raise PlanningRefused(door_estimate_problem(estimate))
         if snapshot.joint_positions is None or snapshot.base_pose is None:
             raise PlanningRefused("no valid joint states / odometry yet")
-        if request.opening not in ("push", "pull"):
-            raise PlanningRefused(f"unknown opening {request.opening!r}; use 'push' or 'pull'")
         try:
             backend = Backend(request.backend or self.parameters["backend"])
         except ValueError:
             raise PlanningRefused(f"unknown backend {request.backend!r}; use 'sqp' or 'chomp'") from None
         body_q = self.kinematics.configuration(
             {k: v for k, v in snapshot.joint_positions.items() if k in self.kinematics.joint_names})
-        hand = Side(estimate.hinge_side.grasp_hand(request.opening))
+        hand = grasp_hand(estimate.hinge_side, request.opening)
         side = hand.other if motion.uses_other_arm else hand
         chain = ArmChain(self.kinematics, side, body_q)
         door = door_model_from_estimate(estimate, np.linalg.inv(snapshot.base_pose),
-                                        push=request.opening == "push", lever_radius=self.lever_radius)
+                                        push=request.opening is DoorOpening.PUSH, lever_radius=self.lever_radius)
         setup = MotionSetup(chain, door, estimate.width, support_polygon(chain),
                             start_door_for(motion, request.door_angle, self.library.options))
         self.get_logger().info(f"planning {motion.value} with the {side.value} arm ({backend.value})")
@@ -162,7 +180,7 @@ class TrajectoryOptimizerNode(Node):
                            door_angle=round(plan.final_door[0], 5),
                            duration_s=round(float(plan.path.times[-1]), 3) if plan.path else 0.0,
                            backend=backend or self.parameters["backend"])
-            if plan.path is not None:  # for the report's before/after plot (seed 000 Fig. 4)
+            if plan.path is not None:  # for the report's before/after plot ([Zucker 2013] Fig. 4)
                 k = len(plan.path.joint_names)
                 details.update(joint_names=list(plan.path.joint_names),
                                initial_guess=np.round(plan.initial_guess[:, :k], 4).tolist(),

@@ -14,7 +14,7 @@ from collections.abc import Callable, Sequence
 import numpy as np
 import scipy.sparse as sp
 
-from door_trajopt.problem import Constraint, ConstraintKind, ResidualCost
+from door_trajopt.problem import Constraint, ConstraintKind
 
 WaypointFunction = Callable[[np.ndarray, bool], tuple[np.ndarray, np.ndarray | None]]
 """f(q_t, need_jacobian) → (value, jacobian or None when not needed)."""
@@ -58,12 +58,6 @@ def waypoint_constraint(name: str, kind: ConstraintKind, function: WaypointFunct
                         at: Sequence[int], m: int, n: int) -> Constraint:
     value, jacobian, data = _callbacks(function, at, rows, m, n)
     return Constraint(name, kind, rows * len(at), value, jacobian, _block_pattern(at, rows, m, n), data)
-
-
-def waypoint_cost(name: str, function: WaypointFunction, rows: int, at: Sequence[int], m: int, n: int,
-                  weight: float) -> ResidualCost:
-    value, jacobian, _ = _callbacks(function, at, rows, m, n)
-    return ResidualCost(name, rows * len(at), value, jacobian, weight, _block_pattern(at, rows, m, n))
 
 
 def fixed_dof(name: str, dof: int, values: dict[int, float], m: int, n: int) -> Constraint:

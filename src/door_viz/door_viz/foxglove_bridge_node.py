@@ -25,8 +25,17 @@ from door_contract.qos import matching_subscription
 from door_contract.topics import Topics, interface_class
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
-from door_viz.foxglove_core import (JSON_ENCODING, ClientCommandError, EventKind, SchemaLibrary, ServerEvent,
-                                    ServerEvents, client_channel_refusal, client_string, mesh_asset)
+from door_viz.foxglove_core import (
+    JSON_ENCODING,
+    ClientCommandError,
+    EventKind,
+    SchemaLibrary,
+    ServerEvent,
+    ServerEvents,
+    client_channel_refusal,
+    client_string,
+    mesh_asset,
+)
 from door_viz.parameters import FOXGLOVE_NODE, FOXGLOVE_PARAMETERS
 
 EVENT_PERIOD_S = 0.02

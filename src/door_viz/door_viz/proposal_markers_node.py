@@ -11,8 +11,8 @@ message that breaks the contract is logged and leaves the picture as it was.
 
 from __future__ import annotations
 
-from nav_msgs.msg import Odometry, Path
 import numpy as np
+from nav_msgs.msg import Odometry, Path
 from rclpy.node import Node
 from rclpy.serialization import deserialize_message
 from sensor_msgs.msg import JointState
@@ -26,8 +26,13 @@ from door_contract.converters.markers import shapes_to_marker_array
 from door_contract.converters.pose import pose_to_matrix
 from door_contract.converters.trajectory import JointPath, msg_to_joint_path
 from door_contract.errors import ContractError, ParameterRangeError
-from door_contract.node_support import (Heartbeat, create_contract_publisher, create_contract_subscription,
-                                        declare_parameters, run_node)
+from door_contract.node_support import (
+    Heartbeat,
+    create_contract_publisher,
+    create_contract_subscription,
+    declare_parameters,
+    run_node,
+)
 from door_contract.payloads import DoorEstimate, FootstepRequest, MotionRequest, decode
 from door_contract.topics import Topics
 from door_robot.errors import RobotModelError
@@ -53,7 +58,8 @@ class ProposalMarkersNode(Node):
         self.pending_trajectory: JointPath | None = None  # waiting for /joint_states and /odom
         self.heartbeat = Heartbeat(self)
         self.markers_pub = create_contract_publisher(self, Topics.PROPOSAL_MARKERS)
-        sub = lambda topic, callback: create_contract_subscription(self, topic, callback)
+        def sub(topic, callback):
+            return create_contract_subscription(self, topic, callback)
         sub(Topics.DOOR_ESTIMATE, self._guarded(self._on_door))
         sub(Topics.FOOTSTEP_REQUEST, self._guarded(lambda m: self._on_request(decode(FootstepRequest, m.data))))
         sub(Topics.MOTION_REQUEST, self._guarded(lambda m: self._on_request(decode(MotionRequest, m.data))))

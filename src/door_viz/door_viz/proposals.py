@@ -18,10 +18,11 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from door_contract.converters.footsteps import Foot, FootPlacement
+from door_contract.converters.footsteps import FootPlacement
 from door_contract.geometry import planar_pose
 from door_contract.marker_shapes import MarkerKind, MarkerShape
 from door_contract.payloads import DoorEstimate
+from door_contract.vocabulary import Foot
 
 LEFT_FOOT_RGBA = (0.12, 0.47, 0.71, 0.8)
 RIGHT_FOOT_RGBA = (1.0, 0.5, 0.05, 0.8)

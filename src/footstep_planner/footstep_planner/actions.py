@@ -26,9 +26,15 @@ from types import MappingProxyType
 
 import numpy as np
 
-from footstep_planner.footstep import Foot, Footstep
-from footstep_planner.geometry import (FloatArray, PackedPolygons, rectangle_axes,
-                                       rectangle_corners, rectangles_overlap_polygons)
+from door_contract.vocabulary import Foot
+from footstep_planner.footstep import Footstep
+from footstep_planner.geometry import (
+    FloatArray,
+    PackedPolygons,
+    rectangle_axes,
+    rectangle_corners,
+    rectangles_overlap_polygons,
+)
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.progress import StepEffects
 
@@ -47,7 +53,7 @@ class StepAction:
 
     def swing_offset(self, swing_foot: Foot, separation: float) -> tuple[float, float, float]:
         """Swing-foot pose (x, y, yaw) in the support foot's frame."""
-        sign = swing_foot.side_sign
+        sign = swing_foot.sign
         half = separation / 2.0
         return (self.forward - math.sin(self.turn) * half,
                 sign * (half + self.outward + math.cos(self.turn) * half),
@@ -55,7 +61,7 @@ class StepAction:
 
     def centre_offset(self, swing_foot: Foot, separation: float) -> tuple[float, float]:
         """The new stance centre c(F') in the support foot's frame."""
-        return (self.forward, swing_foot.side_sign * (separation / 2.0 + self.outward))
+        return (self.forward, swing_foot.sign * (separation / 2.0 + self.outward))
 
     @property
     def centre_shift(self) -> float:
@@ -143,7 +149,7 @@ def is_reachable_step(support: Footstep, swing: Footstep, options: FootstepPlann
     cos_yaw, sin_yaw = math.cos(support.yaw), math.sin(support.yaw)
     x, y = cos_yaw * dx + sin_yaw * dy, -sin_yaw * dx + cos_yaw * dy
     yaw = math.remainder(swing.yaw - support.yaw, math.tau)
-    sign = swing.foot.side_sign
+    sign = swing.foot.sign
     return _left_swing_is_valid(x, sign * y, sign * yaw, options)
 
 
@@ -200,7 +206,7 @@ class ActionTable:
         foot = np.array([a.swing_offset(swing_foot, separation) for a in actions])
         centre = np.array([a.centre_offset(swing_foot, separation) for a in actions])
         midpoint = np.column_stack((foot[:, :2] / 2.0, foot[:, 2] / 2.0))
-        support_centre = np.array([0.0, swing_foot.side_sign * separation / 2.0])
+        support_centre = np.array([0.0, swing_foot.sign * separation / 2.0])
         cost = np.array([a.cost(options) for a in actions])
         points = np.vstack((foot[:, :2], centre, midpoint[:, :2], support_centre[None]))
         return cls(swing_foot, foot, centre, midpoint, support_centre, cost,

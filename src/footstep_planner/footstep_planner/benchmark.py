@@ -24,6 +24,7 @@ import statistics
 import time
 from dataclasses import dataclass, replace
 
+from door_contract.parameters import validate_all
 from door_robot.profile import load_profile
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.benchmark_cases import COARSE, WIDTHS, PlanningCase, approach_cases, passage_cases
@@ -65,7 +66,7 @@ class FamilyRow:
 
 def node_options(profile: str = "talos", shrink: float = 1.0) -> FootstepPlannerOptions:
     """The node's options with its default parameters; stride and turn scaled by ``shrink``."""
-    defaults = {spec.name: spec.default for spec in PLANNER_PARAMETERS}
+    defaults = validate_all(PLANNER_PARAMETERS, {})
     walking = load_profile(profile).walking
     walking = replace(walking, max_stride=walking.max_stride * shrink, max_turn=walking.max_turn * shrink)
     return options_for_walking(walking, defaults["heuristic_weight"], defaults["max_expansions"],
@@ -88,6 +89,8 @@ def time_cases(cases: list[PlanningCase], repeats: int) -> list[Timing]:
             result = case.plan(planner)
             seconds.append(time.perf_counter() - started)
             cpu_seconds.append(time.process_time() - started_cpu)
+        if result is None:
+            raise ValueError(f"repeats must be at least 1, got {repeats}")
         timings.append(Timing(case, statistics.median(seconds), statistics.median(cpu_seconds),
                               result.expansions, result.succeeded))
     return timings

@@ -15,12 +15,14 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass
 
+from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide
+from footstep_planner.door import DoorGeometry
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.legs import Leg
 from footstep_planner.options import FootstepPlannerOptions
-from footstep_planner.requests import GoalSettings, WalkGoal, options_for_problem, walk_problem
+from footstep_planner.plan import PlanResult
+from footstep_planner.requests import GoalSettings, options_for_problem, walk_problem
 from footstep_planner.world import World
 
 DISTANCES = (1.0, 2.0, 3.0, 4.0)
@@ -64,7 +66,7 @@ class PlanningCase:
     start: Stance
     leg: Leg
 
-    def plan(self, planner: FootstepPlanner):
+    def plan(self, planner: FootstepPlanner) -> PlanResult:
         """This case's search with ``planner`` (built once per options, moved to this world)."""
         return planner.with_world(self.world).plan(self.start, self.leg.goal, self.leg.pruning)
 
@@ -110,7 +112,7 @@ def passage_cases(options: FootstepPlannerOptions, settings: GoalSettings = Goal
             family = f"{door.opening.value} passage: {leg.name}"
             cases.append(PlanningCase(family, door.label, problem.world, leg_options, start, leg))
             result = leg_planner.plan(start, leg.goal, leg.pruning)
-            if not result.succeeded:
+            if not result.succeeded or result.plan is None:
                 break
             start = result.plan.final_stance
     return cases

@@ -18,32 +18,16 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from enum import Enum
 
 import numpy as np
 
+from door_contract.vocabulary import DoorOpening, HingeSide
 from footstep_planner.geometry import wrap_angle
 from footstep_planner.obstacles import Obstacle, Point
 from footstep_planner.validation import FieldRange, check_range
 
 _SWEEP_ARC_STEP = 0.3
 """Angular spacing of the polygon that over-approximates the leaf's swept arc (rad)."""
-
-
-class HingeSide(Enum):
-    """Side of the hinge as seen from the approach side, facing the door."""
-
-    LEFT = "left"
-    RIGHT = "right"
-
-
-class DoorOpening(Enum):
-    """How the door opens as seen from the approach side."""
-
-    PUSH = "push"
-    """Away from the robot."""
-    PULL = "pull"
-    """Towards the robot."""
 
 
 @dataclass(frozen=True)

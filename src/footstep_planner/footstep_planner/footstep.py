@@ -9,28 +9,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from enum import Enum
 
 import numpy as np
 
+from door_contract.vocabulary import Foot
 from footstep_planner.geometry import FloatArray, rectangle_corners, wrap_angle
-
-
-class Foot(Enum):
-    """Which foot a footstep belongs to."""
-
-    LEFT = "left"
-    RIGHT = "right"
-
-    @property
-    def other(self) -> Foot:
-        """The opposite foot."""
-        return Foot.RIGHT if self is Foot.LEFT else Foot.LEFT
-
-    @property
-    def side_sign(self) -> float:
-        """+1 for the left foot (it lies on the +y side of the body), -1 for the right."""
-        return 1.0 if self is Foot.LEFT else -1.0
 
 
 @dataclass(frozen=True)
@@ -84,7 +67,7 @@ class Footstep:
 
     def nominal_partner(self, separation: float) -> Footstep:
         """The other foot beside this one, parallel, ``separation`` m apart (centre to centre)."""
-        x, y = self.pose.transform(0.0, -self.foot.side_sign * separation)
+        x, y = self.pose.transform(0.0, -self.foot.sign * separation)
         return Footstep(x, y, self.yaw, self.foot.other)
 
     def stance_centre(self, separation: float) -> Pose2D:
@@ -93,7 +76,7 @@ class Footstep:
         This point, c(F) in the planner's maths, is where the body stands when
         this foot supports and the other is placed in the nominal stance.
         """
-        x, y = self.pose.transform(0.0, -self.foot.side_sign * separation / 2.0)
+        x, y = self.pose.transform(0.0, -self.foot.sign * separation / 2.0)
         return Pose2D(x, y, self.yaw)
 
 

@@ -15,6 +15,7 @@ legs) is built by :mod:`footstep_planner.requests`.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -23,34 +24,51 @@ from std_msgs.msg import String
 from visualization_msgs.msg import Marker, MarkerArray
 
 from door_contract.converters.diagnostics import Health
-from door_contract.converters.footsteps import Foot as ContractFoot
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
 from door_contract.door_estimates import door_estimate_problem
-from door_contract.geometry import yaw_of
 from door_contract.errors import ContractError
 from door_contract.frames import Frame
-from door_contract.node_support import (Heartbeat, as_parameter_error, create_contract_publisher,
-                                        declare_parameters, run_node)
-from door_contract.planner_inputs import PlannerInputs
+from door_contract.geometry import yaw_of
+from door_contract.node_support import (
+    Heartbeat,
+    as_parameter_error,
+    create_contract_publisher,
+    declare_parameters,
+    run_node,
+)
+from door_contract.payloads import (
+    DoorEstimate,
+    FootstepRequest,
+    OutcomeStatus,
+    PlanningOutcome,
+    encode,
+    without_non_finite,
+)
 from door_contract.planner_desk import PlannerDesk
+from door_contract.planner_inputs import PlannerInputs
 from door_contract.planner_service import Finished
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
-from door_contract.payloads import (DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, encode,
-                                    without_non_finite)
 from door_contract.topics import Topics
+from door_contract.vocabulary import DoorOpening, Foot, WalkGoal
 from door_robot.errors import RobotModelError
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.door import DoorOpening
 from footstep_planner.errors import FootstepPlannerError
-from footstep_planner.footstep import Foot, Pose2D, Stance
+from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.goals import replan_needed
 from footstep_planner.legs import plan_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import NODE_NAME, PLANNER_PARAMETERS
 from footstep_planner.plan import FootstepPlan, PlanResult
-from footstep_planner.requests import (GoalSettings, WalkGoal, WalkProblem, door_geometry_from_estimate,
-                                       options_for_problem, passage_angle, planner_options, start_stance,
-                                       walk_problem)
+from footstep_planner.requests import (
+    GoalSettings,
+    WalkProblem,
+    door_geometry_from_estimate,
+    options_for_problem,
+    passage_angle,
+    planner_options,
+    start_stance,
+    walk_problem,
+)
 
 __all__ = ["FootstepPlannerNode", "door_geometry_from_estimate", "planner_options", "main"]
 
@@ -64,7 +82,7 @@ class Snapshot:
     """The inputs a request is planned from, taken when it arrives (the measured state)."""
 
     base_pose: np.ndarray | None
-    feet: list | None
+    feet: list[FootPlacement] | None
     estimate: DoorEstimate | None
     planned_stance: Stance | None
 
@@ -97,7 +115,7 @@ class FootstepPlannerNode(Node):
         self.get_logger().info(f"ready: {self.parameters['robot_profile']} steps ≤ {self.options.max_stride} m, "
                                f"heuristic weight {self.options.heuristic_weight}")
 
-    def _job_for(self, request: FootstepRequest, estimate: DoorEstimate | None):
+    def _job_for(self, request: FootstepRequest, estimate: DoorEstimate | None) -> Callable[[], Solved]:
         """The planning job of ``request`` over the inputs as they are now (the measured state)."""
         snapshot = Snapshot(None if self.inputs.base_pose is None else self.inputs.base_pose.copy(),
                             self.inputs.feet, estimate, self.planned_stance)
@@ -162,16 +180,12 @@ class FootstepPlannerNode(Node):
                                  f"door estimate of stamp {request.door_stamp:.3f} s was not received")
         if door_estimate_problem(estimate):
             raise RequestRefused(door_estimate_problem(estimate))
-        if request.goal not in {goal.value for goal in WalkGoal}:
-            raise RequestRefused(f"unknown goal {request.goal!r}; use 'stand' or 'through'")
-        if request.opening not in ("push", "pull"):
-            raise RequestRefused(f"unknown opening {request.opening!r}; use 'push' or 'pull'")
-        goal = WalkGoal(request.goal)
+        goal = request.goal  # the contract decoded goal and opening: unknown words were refused there
         pose = snapshot.base_pose
         body = Pose2D(float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
-        feet = None if snapshot.feet is None else tuple(Pose2D(f.x, f.y, f.yaw) for f in snapshot.feet)
+        feet = None if snapshot.feet is None else _sole_poses(snapshot.feet)
         start = start_stance(body, self.options.nominal_foot_separation, feet, snapshot.planned_stance)
-        door = door_geometry_from_estimate(estimate, DoorOpening(request.opening), request.door_angle,
+        door = door_geometry_from_estimate(estimate, request.opening, request.door_angle,
                                            self.settings.handle_standoff)
         if goal is WalkGoal.THROUGH and door.opening is DoorOpening.PUSH:
             angle = passage_angle(request.door_angle, self.settings)
@@ -197,14 +211,19 @@ class FootstepPlannerNode(Node):
         super().destroy_node()
 
 
+def _sole_poses(feet: list[FootPlacement]) -> tuple[Pose2D, Pose2D]:
+    """The measured (left, right) sole poses."""
+    left, right = (Pose2D(f.x, f.y, f.yaw) for f in feet)
+    return left, right
+
+
 def contract_footsteps(start: Stance, plan: FootstepPlan) -> list[FootPlacement]:
     """The plan in the /footstep_plan convention: even index = left foot (a step in place first
     when the plan starts with the right foot)."""
     steps = list(plan.steps)
     if steps and steps[0].foot is Foot.RIGHT:
         steps.insert(0, start.left)
-    return [FootPlacement(ContractFoot.LEFT if s.foot is Foot.LEFT else ContractFoot.RIGHT, s.x, s.y, s.yaw)
-            for s in steps]
+    return [FootPlacement(s.foot, s.x, s.y, s.yaw) for s in steps]
 
 
 def footstep_markers(steps: list[FootPlacement], options: FootstepPlannerOptions) -> MarkerArray:
@@ -216,7 +235,7 @@ def footstep_markers(steps: list[FootPlacement], options: FootstepPlannerOptions
         marker.pose.position.x, marker.pose.position.y, marker.pose.position.z = step.x, step.y, 0.01
         marker.pose.orientation.z, marker.pose.orientation.w = math.sin(step.yaw / 2), math.cos(step.yaw / 2)
         marker.scale.x, marker.scale.y, marker.scale.z = options.foot_length, options.foot_width, 0.02
-        left = step.foot is ContractFoot.LEFT
+        left = step.foot is Foot.LEFT
         marker.color.r, marker.color.g, marker.color.b, marker.color.a = (0.1, 0.4, 1.0, 0.8) if left else (1.0, 0.3, 0.1, 0.8)
         markers.markers.append(marker)
     return markers

@@ -205,13 +205,13 @@ def rectangles_touch_any(x: FloatArray, y: FloatArray, yaw: FloatArray, half_len
     reach = np.abs(along @ normals) * half_length[:, None] + np.abs(across @ normals) * half_width[:, None]
     ranges = polygons.normal_ranges.reshape(-1, 2)
     separated = ((centre_on_normals + reach < ranges[:, 0]) | (centre_on_normals - reach > ranges[:, 1]))
-    separated = separated.reshape(shape).any(axis=2)
+    separated = np.asarray(separated.reshape(shape).any(axis=2))
     for axis, half, centre in ((along, half_length, x * cos_yaw + y * sin_yaw),
                                (across, half_width, y * cos_yaw - x * sin_yaw)):
         on_axis = (axis @ vertices).reshape(shape)
         separated |= ((on_axis.max(axis=2) < (centre - half)[:, None])
                       | (on_axis.min(axis=2) > (centre + half)[:, None]))
-    return ~separated.all(axis=1) if count else np.zeros(0, dtype=bool)
+    return np.asarray(~separated.all(axis=1)) if count else np.zeros(0, dtype=bool)
 
 
 def rectangle_axes(yaw: FloatArray) -> FloatArray:

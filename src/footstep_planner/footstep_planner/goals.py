@@ -9,7 +9,8 @@ from __future__ import annotations
 
 import math
 
-from footstep_planner.door import DoorGeometry, DoorOpening
+from door_contract.vocabulary import DoorOpening
+from footstep_planner.door import DoorGeometry
 from footstep_planner.footstep import Pose2D
 from footstep_planner.geometry import wrap_angle
 from footstep_planner.options import FootstepPlannerOptions
@@ -42,7 +43,7 @@ def stand_pose_for_opening(door: DoorGeometry, options: FootstepPlannerOptions,
     handle (u = u_handle - handle_offset, u_handle = leaf width - the handle's distance
     from the free edge), so the handle is in front of the handle-side arm.
 
-    PULL doors (seed 001 Fig. 2: pull with one hand, block with the other): the base
+    PULL doors ([Banerjee 2015] Fig. 2: pull with one hand, block with the other): the base
     stands ``beyond_latch`` m past the latch edge (u = W + beyond_latch). The hinge-side
     hand reaches the handle; the other hand reaches the gap that opens at the free edge,
     to go behind the leaf; and from there the robot can turn towards the hinge and sweep
@@ -82,7 +83,7 @@ def _outside_sweep(door: DoorGeometry, options: FootstepPlannerOptions, reach: f
 
 
 def pull_passage_waypoints(door: DoorGeometry, stand: Pose2D, distance_beyond: float = 1.0) -> tuple[Pose2D, ...]:
-    """Body poses through a PULL door that the other hand blocks (seed 001 Fig. 2).
+    """Body poses through a PULL door that the other hand blocks ([Banerjee 2015] Fig. 2).
 
     From the stand pose beside the latch edge, with the blocking hand behind the leaf near
     its free edge: (1) turn in place to face along the wall towards the hinge: the hand

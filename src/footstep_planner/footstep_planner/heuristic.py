@@ -47,10 +47,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from footstep_planner.footstep import Foot, Pose2D
+from door_contract.vocabulary import Foot
+from footstep_planner.footstep import Pose2D
 from footstep_planner.geometry import FloatArray, wrap_angles
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.progress import ProgressTable
+
 
 @dataclass(frozen=True)
 class FootstepHeuristic:

@@ -12,8 +12,9 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from door_contract.vocabulary import Foot
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.plan import FootstepPlan, PlanOutcome, PlanResult
 from footstep_planner.pruning import LegPruning
 
@@ -46,12 +47,13 @@ def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2
     started = time.perf_counter()
     if not waypoints:
         return PlanResult(PlanOutcome.INVALID_GOAL, "no waypoints to walk through", None, 0, 0.0)
-    stance, steps, cost, expansions = start, [], 0.0, 0
+    stance, cost, expansions = start, 0.0, 0
+    steps: list[Footstep] = []
     legs = [Leg.of(waypoint) for waypoint in waypoints]
     for number, leg in enumerate(legs, start=1):
         result = planner.plan(stance, leg.goal, leg.pruning, attempt=attempt)
         expansions += result.expansions
-        if not result.succeeded:
+        if not result.succeeded or result.plan is None:  # a search that succeeded has a plan
             label = f"leg {number} of {len(legs)}" + (f" ({leg.name})" if leg.name else "")
             return PlanResult(result.outcome, f"{label}: {result.reason}", None,
                               expansions, time.perf_counter() - started)

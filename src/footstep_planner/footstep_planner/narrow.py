@@ -28,7 +28,8 @@ from __future__ import annotations
 
 import math
 
-from footstep_planner.door import DoorGeometry, DoorOpening
+from door_contract.vocabulary import DoorOpening
+from footstep_planner.door import DoorGeometry
 from footstep_planner.footstep import Pose2D
 from footstep_planner.geometry import wrap_angle
 from footstep_planner.goals import through_door_pose

@@ -30,6 +30,6 @@ PLANNER_PARAMETERS = (
                   minimum=0.0, maximum=0.3),
     ParameterSpec("beyond_door", 1.0, "goal distance past the door plane", unit="m", minimum=0.3, maximum=5.0),
     ParameterSpec("passage_door_angle", 1.57, "door angle assumed while passing: the body pushes the "
-                  "leaf open (seed 001 used a potential field for the swinging door)", unit="rad",
+                  "leaf open ([Banerjee 2015] used a potential field for the swinging door)", unit="rad",
                   minimum=0.0, maximum=2.0),
 )

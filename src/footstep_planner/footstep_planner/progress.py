@@ -57,7 +57,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from footstep_planner.footstep import Foot
+from door_contract.vocabulary import Foot
 from footstep_planner.geometry import FloatArray, wrap_angles
 
 TABLE_STEPS = 48
@@ -168,7 +168,7 @@ def _forward(effects: Mapping[Foot, StepEffects], turn_bins: Mapping[Foot, np.nd
     bins, centres = grid.bins, grid.centres
     gains = {foot: [_advance_by_turn(e, turn_bins[foot], centres, grid.slack(step)) for step in range(TABLE_STEPS)]
              for foot, e in effects.items()}
-    tables = {}
+    tables: dict[Foot, FloatArray] = {}
     for first in Foot:
         reach = np.full((bins, bins), -np.inf)
         np.fill_diagonal(reach, 0.0)

@@ -11,14 +11,14 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from enum import Enum
 from typing import Any
 
 import numpy as np
 
 from door_contract.payloads import DoorEstimate
-from footstep_planner.door import DoorGeometry, DoorOpening, HingeSide, wall_obstacles
-from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from door_contract.vocabulary import DoorOpening, Foot, WalkGoal
+from footstep_planner.door import DoorGeometry, wall_obstacles
+from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.goals import pull_passage_waypoints, stand_pose_for_opening
 from footstep_planner.legs import Leg
 from footstep_planner.narrow import passage_legs
@@ -26,22 +26,13 @@ from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.robot_limits import options_for_walking, planner_options
 from footstep_planner.world import World
 
-__all__ = ["GoalSettings", "WalkGoal", "WalkProblem", "door_geometry_from_estimate", "options_for_problem",
+__all__ = ["GoalSettings", "WalkProblem", "door_geometry_from_estimate", "options_for_problem",
            "options_for_walking", "passage_angle", "planner_options", "stand_pose", "start_stance", "walk_problem"]
 
 PLANNED_STANCE_TOLERANCE = (0.03, 0.05)
 """The base within (m, rad) of where the last plan left it: that plan was walked."""
 PULL_LEG_NAMES = ("turn towards the hinge", "along the wall", "face the doorway", "through the doorway")
 """The legs of :func:`~footstep_planner.goals.pull_passage_waypoints`, in order."""
-
-
-class WalkGoal(str, Enum):
-    """What a FootstepRequest asks for."""
-
-    STAND = "stand"
-    """To the stand pose, where the arms open the door."""
-    THROUGH = "through"
-    """Through the open doorway."""
 
 
 def door_geometry_from_estimate(estimate: DoorEstimate, opening: DoorOpening, angle: float,
@@ -61,7 +52,7 @@ def door_geometry_from_estimate(estimate: DoorEstimate, opening: DoorOpening, an
         if 0.5 <= width <= 1.5 and 0.0 < handle_offset < width:
             dimensions = {"leaf_width": width, "clear_opening": width, "handle_offset": handle_offset}
     return DoorGeometry.from_handle(float(face[0]), float(face[1]), math.atan2(normal[1], normal[0]),
-                                    HingeSide(estimate.hinge_side.value), opening, angle=angle, **dimensions)
+                                    estimate.hinge_side, opening, angle=angle, **dimensions)
 
 
 def start_stance(body: Pose2D, separation: float, feet: tuple[Pose2D, Pose2D] | None = None,
@@ -153,7 +144,7 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
     (:func:`~footstep_planner.narrow.passage_legs`).
     """
     if goal is WalkGoal.STAND:
-        legs = (Leg(stand_pose(door, options, settings), "to the stand pose"),)
+        legs: tuple[Leg, ...] = (Leg(stand_pose(door, options, settings), "to the stand pose"),)
         return WalkProblem(start, legs, World.from_door(door), door)
     if door.opening is DoorOpening.PULL:
         poses = pull_passage_waypoints(door, stand_pose(door, options, settings), settings.beyond_door)

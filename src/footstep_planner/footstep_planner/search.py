@@ -19,10 +19,11 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from door_contract.vocabulary import Foot
 from footstep_planner.actions import ActionTable
 from footstep_planner.closed_set import ClosedSetGrid
 from footstep_planner.footprint import FootprintChecker
-from footstep_planner.footstep import Foot, Footstep, Pose2D, Stance
+from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.geometry import Bounds, wrap_angle, wrap_angles
 from footstep_planner.heuristic import FootstepHeuristic, is_goal_centre
 from footstep_planner.options import FootstepPlannerOptions
@@ -243,7 +244,7 @@ class Search:
         hits = self._world.rectangles_touch(points[rows, 0], points[rows, 1],
                                             np.concatenate((foot_yaw, foot_yaw, midpoint_yaw)),
                                             half_length[rows], half_width[rows])
-        return ~hits.reshape(3, -1).any(axis=0)
+        return np.asarray(~hits.reshape(3, -1).any(axis=0))
 
     def _success(self, start: Stance, index: int, expansions: int) -> PlanResult:
         steps = (*self._path(index), self._closing_step(index))

@@ -8,9 +8,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from footstep_planner.geometry import (BoolArray, FloatArray, PackedPolygons, edge_normals,
-                                       interior_angles, rectangle_axes,
-                                       rectangles_overlap_polygons, rectangles_touch_any)
+from footstep_planner.geometry import (
+    BoolArray,
+    FloatArray,
+    PackedPolygons,
+    edge_normals,
+    interior_angles,
+    rectangle_axes,
+    rectangles_overlap_polygons,
+    rectangles_touch_any,
+)
 from footstep_planner.obstacles import Obstacle
 
 if TYPE_CHECKING:
@@ -76,10 +83,6 @@ class World:
         door angles of ``sweep`` (rad) when given, for "keep out of the door's swing"."""
         from footstep_planner.door import door_obstacles  # door.py builds on this module
         return cls(door_obstacles(door, sweep))
-
-    def with_obstacles(self, *extra: Obstacle) -> World:
-        """This world plus ``extra`` obstacles."""
-        return World(self.obstacles + tuple(extra))
 
     def rectangles_collide(self, x: FloatArray, y: FloatArray, yaw: FloatArray,
                            length: float | FloatArray, width: float | FloatArray,

@@ -15,8 +15,7 @@ from __future__ import annotations
 
 from enum import IntEnum
 
-from door_bringup.bags.storage import (BagError, BagMetadataError, BagNotFoundError, BagStorageError,
-                                       BagWriteError)
+from door_bringup.bags.storage import BagError, BagMetadataError, BagNotFoundError, BagStorageError, BagWriteError
 
 
 class BagExit(IntEnum):

@@ -20,8 +20,8 @@ from pathlib import Path
 
 from rclpy.node import Node
 
-from door_bringup.bags.player import qos_for
 from door_bringup.bags.exit_codes import exit_code_for
+from door_bringup.bags.player import qos_for
 from door_bringup.bags.qos import offered_qos
 from door_bringup.bags.storage import BagError, BagWriter, Compression, StorageFormat
 from door_contract.converters.diagnostics import Health

@@ -1,0 +1,70 @@
+"""The words every package of the door task shares: door opening, sides, walk goals.
+
+ROS-free (standard library only), so the cores (footstep planner, trajectory optimiser,
+detector, sim) import it without rclpy. Every enum is a :class:`~enum.StrEnum` whose values
+are the spellings used in parameters, YAML and JSON payloads (``"push"``, ``"left"``,
+``"stand"``): a member compares equal to its spelling, formats as it (``f"/{side}_hand"`` is
+``/left_hand``) and :mod:`door_contract.payloads` decodes it.
+
+Sides are **as seen by the robot facing forward** (REP-103: x forward, y left). For a door
+that is the approach side facing the door, which is also left/right in the head camera's
+image.
+"""
+
+from __future__ import annotations
+
+from enum import StrEnum
+
+__all__ = ["DoorOpening", "Foot", "HingeSide", "Side", "WalkGoal", "grasp_hand"]
+
+
+class DoorOpening(StrEnum):
+    """Which way the leaf swings, seen from the approach side."""
+
+    PUSH = "push"
+    """Away from the robot."""
+    PULL = "pull"
+    """Towards the robot."""
+
+
+class Side(StrEnum):
+    """Left or right as seen by the robot facing forward (or facing the door)."""
+
+    LEFT = "left"
+    RIGHT = "right"
+
+    @property
+    def other(self) -> Side:
+        """The opposite side (for a hinge: the handle's side)."""
+        return Side.RIGHT if self is Side.LEFT else Side.LEFT
+
+    @property
+    def sign(self) -> float:
+        """+1 for LEFT (REP-103 +y, where the left foot and hand are), -1 for RIGHT."""
+        return 1.0 if self is Side.LEFT else -1.0
+
+
+Foot = Side
+"""Which foot a footstep belongs to: a :class:`Side` (the feet are keyed by side)."""
+
+HingeSide = Side
+"""The side of the door's hinges, seen from the approach side facing the door: a :class:`Side`."""
+
+
+def grasp_hand(hinge_side: Side, opening: DoorOpening) -> Side:
+    """The hand that opens the door.
+
+    Push doors: the hand on the handle's side (opposite the hinge). Pull doors: the robot
+    stands beyond the latch edge, outside the leaf's sweep, so the handle is on its hinge side
+    and that hand reaches it.
+    """
+    return hinge_side.other if DoorOpening(opening) is DoorOpening.PUSH else hinge_side
+
+
+class WalkGoal(StrEnum):
+    """What a footstep request plans to (``FootstepRequest.goal``)."""
+
+    STAND = "stand"
+    """The stand pose in front of the door, from which the arm opens it."""
+    THROUGH = "through"
+    """Through the open doorway, past the door plane."""
