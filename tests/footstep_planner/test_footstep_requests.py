@@ -26,7 +26,9 @@ SETTINGS = GoalSettings()
 
 
 @pytest.mark.parametrize("profile", ["talos", "atlas_v4", "drc_hubo"])
-def test_options_come_from_the_robot_profile_within_its_margins(profile: str) -> None:
+def test_options_come_from_the_robot_profile_within_its_margins(profile: str, request: pytest.FixtureRequest) -> None:
+    if profile != "talos":  # their URDFs are real files in ../shared/data, not in a package
+        request.getfixturevalue("shared_data")
     walking = load_profile(profile).walking
     options = options_for_walking(walking, 2.5, 20_000, 30.0)
     assert options.max_stride == pytest.approx(walking.max_stride * STEP_LIMIT_MARGIN)
