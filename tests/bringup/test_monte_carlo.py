@@ -38,11 +38,19 @@ def test_summary_counts_each_opening_and_names_the_failures():
     assert "- trial 1: WALK_TO_DOOR: planning failed" in text
 
 
-def test_falls_are_counted_per_phase():
-    fell = _report("push", False, 1.0, 0.5)
-    fell["failure_reason"] = "WALK_THROUGH: the robot fell: base tilted 35° (more than 34°)"
-    fell_opening = dict(fell, failure_reason="OPEN_DOOR/PUSH: the robot fell: base 0.4 m high")
-    reports = [fell, fell_opening, dict(fell), _report("pull", False, 1.0, 0.5), _report("push", True, 1.0, 0.5)]
+def _fell_in(state: str) -> dict:
+    report = _report("push", False, 1.0, 0.5)
+    report["attempts"] = [*report["attempts"][:1], {**report["attempts"][1], "outcome": "succeeded"},
+                          {"state": state, "attempt": 1, "outcome": "fell", "planning_s": 0.1, "moving_s": 3.0,
+                           "waiting_s": 0.0, "reason": "the robot fell: base tilted 35° (more than 34°)"}]
+    return report
+
+
+def test_falls_are_counted_per_phase_from_the_attempts_outcome():
+    fell, fell_opening = _fell_in("WALK_THROUGH"), _fell_in("OPEN_DOOR/PUSH")
+    said_fell = _report("pull", False, 1.0, 0.5)  # a reason that mentions a fall is not a fall
+    said_fell["failure_reason"] = "WALK_TO_DOOR: the robot fell? no: planning failed"
+    reports = [fell, fell_opening, _fell_in("WALK_THROUGH"), said_fell, _report("push", True, 1.0, 0.5)]
     assert falls_line(reports) == "Falls: 3/5 runs (OPEN_DOOR 1, WALK_THROUGH 2)"
     assert falls_line([_report("push", True, 1.0, 0.5)]) == "Falls: 0/1 runs (none)"
     assert "Falls: 3/5" in summary(reports)

@@ -130,7 +130,7 @@ def test_a_fall_fails_the_task_without_repeat():
     machine = _executing(TaskState.WALK_THROUGH)
     machine.handle(ev.ExecutionFinished(machine.request_id, False, "fell: base 0.4 m high", fell=True), t(101.0))
     assert machine.state is TaskState.FAILED and "the robot fell" in machine.failure_reason
-    assert machine.records[-1].outcome is StateOutcome.FAILED
+    assert machine.records[-1].outcome is StateOutcome.FELL
 
 
 def test_stop_while_paused_stops_again():

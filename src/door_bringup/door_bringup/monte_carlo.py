@@ -94,10 +94,10 @@ def summary(reports: list[dict]) -> str:
 
 
 def falls_line(reports: list[dict]) -> str:
-    """Runs that ended with the robot fallen, per phase (the FSM names the state in which the
-    execution reported ``fell``: ``"<STATE>: the robot fell: ..."``)."""
-    phases = Counter(phase_of(r["failure_reason"].split(":", 1)[0]) for r in reports
-                     if r["final_state"] != "DONE" and "the robot fell" in r["failure_reason"])
+    """Runs that ended with the robot fallen, per phase: the state attempt whose outcome is
+    ``fell`` (the FSM records it so when the execution reports the fall)."""
+    phases = Counter(phase_of(attempt["state"]) for r in reports for attempt in r["attempts"]
+                     if attempt["outcome"] == "fell")
     counted = ", ".join(f"{phase} {count}" for phase, count in sorted(phases.items())) or "none"
     return f"Falls: {sum(phases.values())}/{len(reports)} runs ({counted})"
 

@@ -237,7 +237,7 @@ class DoorTaskMachine:
 
     def _on_execution(self, event: ev.ExecutionFinished, now: Instant) -> list[act.Action]:
         if event.fell:
-            return self._terminal_failure(f"the robot fell: {event.reason}", now, StateOutcome.FAILED)
+            return self._terminal_failure(f"the robot fell: {event.reason}", now, StateOutcome.FELL)
         if event.succeeded:
             return self._finish(StateOutcome.SUCCEEDED, now)
         return self._retry(f"execution failed: {event.reason}", now)

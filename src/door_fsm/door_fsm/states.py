@@ -60,3 +60,4 @@ class StateOutcome(str, Enum):
     SLIPPED = "slipped"          # the hand slipped off the handle: redo from MOVE_TO_HANDLE
     TIMEOUT = "timeout"
     ABORTED = "aborted"
+    FELL = "fell"                # the robot fell: the task ends FAILED, nothing repeats
