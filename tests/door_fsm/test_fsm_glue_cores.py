@@ -28,7 +28,7 @@ def test_the_task_starts_when_the_required_nodes_are_up_or_after_the_timeout():
 
 def test_execution_answers_become_events():
     fell = execution_event(ExecutionOutcome(ExecutionKind.FOOTSTEPS, 5, OutcomeStatus.FELL, "base 0.3 m high"), 9)
-    assert fell == ev.ExecutionFinished(9, False, "fell: base 0.3 m high", fell=True)
+    assert fell == ev.ExecutionFinished(9, False, "base 0.3 m high", fell=True)
     stopped = execution_event(ExecutionOutcome(ExecutionKind.TRAJECTORY, 5, OutcomeStatus.STOPPED, "dead-man"), 9)
     assert not stopped.succeeded and not stopped.fell and "stopped: dead-man" in stopped.reason
     slip = execution_event(ExecutionOutcome(ExecutionKind.TRAJECTORY, 5, OutcomeStatus.FAILURE, "slip", slipped=True), 9)

@@ -130,7 +130,7 @@ class Execution(ABC):
         """The robot is down: end with FELL (a plan sent after the fall moves nothing)."""
         elapsed = self.elapsed
         self.phase = ExecutionPhase.FINISHED
-        self.result = ExecutionResult(OutcomeStatus.FELL, f"the robot fell: {self.world.fall_reason}", elapsed)
+        self.result = ExecutionResult(OutcomeStatus.FELL, str(self.world.fall_reason), elapsed)  # the status says it fell
 
     def _slip_since_start(self) -> SimEvent | None:
         """The first grasp slip recorded since this execution started, if any."""

@@ -18,8 +18,9 @@ from door_fsm.summaries import plan_summary
 def execution_event(outcome: ExecutionOutcome, request_id: int) -> ev.Event:
     if outcome.slipped:
         return ev.HandSlipped(outcome.reason)
-    return ev.ExecutionFinished(request_id, outcome.status is OutcomeStatus.SUCCESS,
-                                f"{outcome.status.value}: {outcome.reason}", fell=outcome.status is OutcomeStatus.FELL)
+    fell = outcome.status is OutcomeStatus.FELL  # the reason is then how it fell ("base tilted 35°")
+    reason = outcome.reason if fell else f"{outcome.status.value}: {outcome.reason}"
+    return ev.ExecutionFinished(request_id, outcome.status is OutcomeStatus.SUCCESS, reason, fell=fell)
 
 
 def planning_event(answer: Proposal | PlanningOutcome) -> ev.Event:
