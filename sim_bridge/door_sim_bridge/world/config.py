@@ -133,7 +133,10 @@ class DoorConfig:
     latch_play: float = 0.004  # rad the latched door can move (a few mm at the latch edge)
     closer_stiffness: float = 8.0  # N·m/rad
     closer_preload: float = 2.0  # N·m at closed
-    hinge_damping: float = 3.0  # N·m·s/rad
+    # N·m·s/rad: a closer is a hydraulic damper, overdamped on this leaf (I = m w²/3 ≈ 7 kg m²,
+    # ζ = c / (2 √(k I)) ≈ 1.3; real closers take seconds to shut from 90°). At 3 the leaf rang
+    # (ζ ≈ 0.2), bounced off its stop and swung back into the walking robot at 1 rad/s.
+    hinge_damping: float = 20.0
     hinge_friction: float = 0.5  # N·m
     handle_stiffness: float = 2.0  # N·m/rad
     handle_preload: float = 0.3  # N·m at rest
