@@ -391,6 +391,20 @@ class DoorWorld:
     def door_state(self) -> DoorState:
         return self.door.state()
 
+    def door_contact_forces(self) -> dict[str, float]:
+        """Normal force (N) of this step's contacts between the robot and the door's body (leaf,
+        handle, frame and wall), summed per ``"<robot link> | <door link>"``."""
+        forces: dict[str, float] = {}
+        for contact in self._client.getContactPoints(bodyA=self.robot.body, bodyB=self.door.body):
+            robot_link = self._link_name(self.robot.body, contact[3])
+            door_link = self._link_name(self.door.body, contact[4])
+            key = f"{robot_link} | {door_link}"
+            forces[key] = forces.get(key, 0.0) + float(contact[9])
+        return forces
+
+    def _link_name(self, body: int, link: int) -> str:
+        return self._client.getJointInfo(body, link)[12].decode() if link >= 0 else "base"
+
     def handle_grasp_pose(self) -> np.ndarray:
         """4×4 ground-truth grasp point on the lever (x = door normal towards the robot, z up)."""
         return self.door.handle_grasp_pose()

@@ -1,0 +1,197 @@
+"""``door_passage_rig``: the door task without ROS, to study the physical walk through a doorway.
+
+The graph takes ~3 min per door; this runs the same cores in one process in ~10 s: a perfect
+detector (the sim's ground truth), the stand pose the footstep planner chooses, the motion
+library's motions in the FSM's order (approach, grasp, turn, push | pull and block, release,
+ready to walk), then the footstep planner's passage, walked by the physical robot. Each run
+prints how it ended and which robot links struck the door hardest — what issue #11 needs to
+know about a fall. ``--trials`` jitters the stand pose by up to ±2 cm and ±1° per trial: a
+single run of a balancing robot proves little.
+
+    python -m door_bringup.passage_rig --openings push pull --hinges left right --trials 3
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from door_contract.payloads import DoorEstimate, OutcomeStatus
+from door_contract.vocabulary import DoorOpening, HingeSide, Side, grasp_hand
+from door_robot.kinematics import RobotKinematics
+from door_robot.profile import load_profile
+from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
+from door_sim_bridge.world import DoorConfig, DoorWorld, StanceConfig, WorldConfig
+from door_trajopt.chain import ArmChain
+from door_trajopt.door_model import door_model_from_estimate
+from door_trajopt.library import Backend, MotionLibrary
+from door_trajopt.motions import Motion, MotionSetup, start_door_for, support_polygon
+from footstep_planner.astar import FootstepPlanner
+from footstep_planner.footstep import Pose2D
+from footstep_planner.footstep_planner_node import contract_footsteps
+from footstep_planner.legs import plan_legs
+from footstep_planner.requests import (
+    GoalSettings,
+    WalkGoal,
+    door_geometry_from_estimate,
+    options_for_problem,
+    planner_options,
+    stand_pose,
+    start_stance,
+    walk_problem,
+)
+
+SEARCH = {"heuristic_weight": 1.0, "max_expansions": 20_000, "max_planning_time": 30.0}
+"""The footstep planner node's default search settings."""
+JITTER = np.array([0.02, 0.02, np.radians(1.0)])
+"""Largest stand-pose error a trial adds: along the normal, along the wall (m), yaw (rad)."""
+GRASP, RELEASE = "grasp", "release"
+
+
+@dataclass(frozen=True)
+class PassageRun:
+    """How one door ended: ``stage`` is the motion or "walk through" it ended in."""
+
+    opening: DoorOpening
+    hinge: HingeSide
+    trial: int
+    stage: str
+    status: str
+    reason: str
+    door_angle: float  # rad, at the end
+    strikes: tuple[tuple[str, float], ...]  # (robot link | door part, peak normal force N), hardest first
+
+    def line(self) -> str:
+        strikes = ", ".join(f"{name} {force:.0f} N" for name, force in self.strikes) or "none"
+        return (f"{self.opening.value:4s} {self.hinge.value:5s} #{self.trial}: {self.stage}: {self.status}"
+                f"{(' (' + self.reason + ')') if self.reason else ''}; door {self.door_angle:.2f} rad; "
+                f"hardest contacts: {strikes}")
+
+
+def perfect_estimate(world: DoorWorld) -> DoorEstimate:
+    """The estimate the detector should publish, from the simulator's ground truth."""
+    truth = world.door_ground_truth()
+    return DoorEstimate(world.time, "odom", tuple(truth.handle_grasp_pose[:3, 3]), tuple(truth.normal),
+                        world.config.door.hinge_side, truth.width, tuple(tuple(c) for c in truth.corners),
+                        1.0, 10, "automatic")
+
+
+def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> DoorWorld:
+    """The robot at the stand pose the footstep planner chooses for ``door`` (plus ``offset``:
+    along the door normal, along the wall, yaw), standing on the floor."""
+    with DoorWorld(WorldConfig(door=door)) as probe:
+        estimate = perfect_estimate(probe)
+    settings = GoalSettings()
+    options = planner_options("talos", SEARCH)
+    geometry = door_geometry_from_estimate(estimate, door.opening, 0.0, settings.handle_standoff)
+    stand = stand_pose(geometry, options, settings)
+    return DoorWorld(WorldConfig(door=door, stance=StanceConfig(
+        distance=-stand.x + offset[0], lateral_offset=stand.y + offset[1], yaw=offset[2])))
+
+
+def motion_setup(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate, hand: Side,
+                 door_angles: tuple[float, float]) -> MotionSetup:
+    """The motion library's set-up from the measured posture and the (pre-opening) estimate."""
+    push = world.config.door.opening is DoorOpening.PUSH
+    body_q = kinematics.configuration({name: value for name, value in world.joint_positions().items()
+                                       if name in kinematics.joint_names})
+    chain = ArmChain(kinematics, hand, body_q)
+    door = door_model_from_estimate(estimate, np.linalg.inv(world.base_pose()), push=push)
+    return MotionSetup(chain, door, estimate.width, support_polygon(chain), door_angles)
+
+
+def opening_sequence(opening: DoorOpening) -> tuple[Motion | str, ...]:
+    """The FSM's OPEN_DOOR sub-states as motions and grasp commands, in order."""
+    swing = (Motion.PUSH_DOOR,) if opening is DoorOpening.PUSH else (Motion.PULL_DOOR, Motion.BLOCK_DOOR)
+    return (Motion.APPROACH_HANDLE, GRASP, Motion.TURN_HANDLE, *swing, RELEASE, Motion.READY_TO_WALK)
+
+
+def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate) -> tuple[str, str, str]:
+    """Run the opening sequence; (stage, status, reason) of the step it stopped in, or of the last."""
+    opening = world.config.door.opening
+    hand, library, door_angle = grasp_hand(estimate.hinge_side, opening), MotionLibrary(), 0.0
+    for step in opening_sequence(opening):
+        if step in (GRASP, RELEASE):
+            answer = world.grasp(hand, step == GRASP)
+            if not answer.success:
+                return str(step), "failure", answer.message
+            continue
+        assert isinstance(step, Motion)
+        side = hand.other if step is Motion.BLOCK_DOOR else hand
+        setup = motion_setup(world, kinematics, estimate, side, start_door_for(step, door_angle, library.options))
+        plan = library.plan(step, setup, setup.chain.chain_of(setup.chain.body_q), Backend.SQP)
+        if not plan.succeeded:
+            return step.value, "planning failed", plan.result.message
+        result = TrajectoryExecution.from_joint_path(world, plan.path).run()
+        if result.status is not OutcomeStatus.SUCCESS:
+            return step.value, result.status.value, result.reason
+        door_angle = float(plan.final_door[0])
+    return Motion.READY_TO_WALK.value, "success", ""
+
+
+def walk_through(world: DoorWorld, estimate: DoorEstimate) -> tuple[str, str, dict[str, float]]:
+    """Plan the passage from the measured feet and walk it: (status, reason, peak contact forces)."""
+    settings, options = GoalSettings(), planner_options("talos", SEARCH)
+    door = door_geometry_from_estimate(estimate, world.config.door.opening, world.door_state().hinge_angle,
+                                       settings.handle_standoff)
+    feet = world.foot_placements()
+    base = world.base_pose()
+    body = Pose2D(float(base[0, 3]), float(base[1, 3]), float(np.arctan2(base[1, 0], base[0, 0])))
+    soles = tuple(Pose2D(feet[side].x, feet[side].y, feet[side].yaw) for side in (Side.LEFT, Side.RIGHT))
+    start = start_stance(body, options.nominal_foot_separation, soles)
+    problem = walk_problem(WalkGoal.THROUGH, door, start, options, settings)
+    planner = FootstepPlanner(problem.world, options_for_problem(problem, WalkGoal.THROUGH, options))
+    result = (plan_legs(planner, start, problem.legs, 0) if len(problem.legs) > 1
+              else planner.plan(start, problem.legs[0].goal))
+    if not result.succeeded:
+        return "planning failed", f"{result.outcome.value}: {result.reason}", {}
+    execution, peaks = FootstepExecution(world, contract_footsteps(start, result.plan)), {}
+    while not execution.command():
+        world.step()
+        for name, force in world.door_contact_forces().items():
+            peaks[name] = max(peaks.get(name, 0.0), force)
+    return execution.result.status.value, execution.result.reason, peaks
+
+
+def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics) -> PassageRun:
+    """One door, its stand pose jittered by ``trial`` (0: none)."""
+    rng = np.random.default_rng(trial)
+    jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
+    with stand_world(DoorConfig(opening=opening, hinge_side=hinge), (jitter[0], jitter[1], jitter[2])) as world:
+        estimate = perfect_estimate(world)
+        stage, status, reason = open_door(world, kinematics, estimate)
+        peaks: dict[str, float] = {}
+        if status == "success":
+            stage = "walk through"
+            status, reason, peaks = walk_through(world, estimate)
+        strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
+        return PassageRun(opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle, strikes)
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(prog="door_passage_rig", description=__doc__.split("\n\n")[0])
+    parser.add_argument("--openings", nargs="+", choices=[o.value for o in DoorOpening], default=["push", "pull"])
+    parser.add_argument("--hinges", nargs="+", choices=[h.value for h in HingeSide], default=["left", "right"])
+    parser.add_argument("--trials", type=int, default=1, help="per door; trial 0 is the exact stand pose")
+    args = parser.parse_args(argv)
+    if args.trials < 1:
+        parser.error("--trials must be at least 1")
+    kinematics = RobotKinematics(load_profile("talos"))
+    runs = []
+    for opening in args.openings:
+        for hinge in args.hinges:
+            for trial in range(args.trials):
+                runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics))
+                print(runs[-1].line(), flush=True)
+    through = sum(run.stage == "walk through" and run.status == "success" for run in runs)
+    fell = sum(run.status == OutcomeStatus.FELL.value for run in runs)
+    print(f"through the doorway: {through}/{len(runs)}; fell: {fell}/{len(runs)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
