@@ -1,0 +1,27 @@
+"""The passage rig's sequence and report line (the scenes themselves serve tests/door_trajopt)."""
+
+import pytest
+
+from door_bringup.passage_rig import GRASP, RELEASE, PassageRun, main, opening_sequence
+from door_contract.vocabulary import DoorOpening, HingeSide
+from door_trajopt.motions import Motion
+
+
+def test_the_doors_are_opened_in_the_fsms_order():
+    assert opening_sequence(DoorOpening.PUSH) == (Motion.APPROACH_HANDLE, GRASP, Motion.TURN_HANDLE,
+                                                  Motion.PUSH_DOOR, RELEASE, Motion.READY_TO_WALK)
+    pull = opening_sequence(DoorOpening.PULL)
+    assert pull[3:5] == (Motion.PULL_DOOR, Motion.BLOCK_DOOR)  # the other hand blocks before the release
+
+
+def test_a_run_says_where_it_ended_and_what_struck_hardest():
+    run = PassageRun(DoorOpening.PULL, HingeSide.RIGHT, 2, "walk through", "fell", "base tilted 35°", 0.97,
+                     (("arm_left_3_link | base", 2393.0), ("torso_2_link | leaf", 503.4)))
+    line = run.line()
+    assert line.startswith("pull right #2: walk through: fell (base tilted 35°); door 0.97 rad")
+    assert line.endswith("hardest contacts: arm_left_3_link | base 2393 N, torso_2_link | leaf 503 N")
+
+
+def test_no_trials_is_refused():
+    with pytest.raises(SystemExit):
+        main(["--trials", "0"])
