@@ -62,6 +62,7 @@ from door_trajopt.motions import (
     support_polygon,
 )
 from door_trajopt.parameters import NODE_NAME, OPTIMIZER_PARAMETERS
+from door_trajopt.problem import TrajoptError
 
 
 class PlanningRefused(Exception):
@@ -84,7 +85,7 @@ class TrajectoryOptimizerNode(Node):
         self.parameters = p
         with as_parameter_error(f"parameter 'robot_profile' = {p['robot_profile']!r}", RobotModelError):
             self.kinematics = RobotKinematics(load_profile(p["robot_profile"]))
-        with as_parameter_error("motion library options", ValueError):
+        with as_parameter_error("motion library options", TrajoptError):
             self.library = MotionLibrary(MotionOptions(
                 waypoints=p["waypoints"], handle_turn=p["handle_turn"], push_angle=p["push_angle"],
                 pull_angle=p["pull_angle"]), starts=p["initial_guesses"], velocity_scale=p["velocity_scale"])
@@ -140,11 +141,9 @@ class TrajectoryOptimizerNode(Node):
 
     def _plan(self, request: MotionRequest, snapshot: Snapshot) -> MotionPlan:
         """On the worker thread (the only user of the robot model and the library)."""
-        try:
-            motion = Motion(request.motion)
-        except ValueError:
-            raise PlanningRefused(f"unknown motion {request.motion!r}; known: "
-                                  + ", ".join(m.value for m in Motion)) from None
+        motion = next((m for m in Motion if m.value == request.motion), None)
+        if motion is None:
+            raise PlanningRefused(f"unknown motion {request.motion!r}; known: " + ", ".join(m.value for m in Motion))
         estimate = snapshot.estimate
         if estimate is None:
             raise PlanningRefused("no door estimate yet" if request.door_stamp < 0 else
@@ -153,10 +152,9 @@ class TrajectoryOptimizerNode(Node):
             raise PlanningRefused(door_estimate_problem(estimate))
         if snapshot.joint_positions is None or snapshot.base_pose is None:
             raise PlanningRefused("no valid joint states / odometry yet")
-        try:
-            backend = Backend(request.backend or self.parameters["backend"])
-        except ValueError:
-            raise PlanningRefused(f"unknown backend {request.backend!r}; use 'sqp' or 'chomp'") from None
+        backend = next((b for b in Backend if b.value == (request.backend or self.parameters["backend"])), None)
+        if backend is None:
+            raise PlanningRefused(f"unknown backend {request.backend!r}; use 'sqp' or 'chomp'")
         body_q = self.kinematics.configuration(
             {k: v for k, v in snapshot.joint_positions.items() if k in self.kinematics.joint_names})
         hand = grasp_hand(estimate.hinge_side, request.opening)
