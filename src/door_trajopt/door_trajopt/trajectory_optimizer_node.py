@@ -69,6 +69,11 @@ class PlanningRefused(Exception):
     """A request that cannot be planned (bad or missing input); the message says why."""
 
 
+BAD_INPUT = (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)
+"""What a request's planning raises for bad input (answered REJECTED); anything else,
+:class:`~door_trajopt.problem.TrajoptError` of a built problem included, is a bug (FAILURE)."""
+
+
 @dataclass(frozen=True)
 class Snapshot:
     """The inputs a request is planned from, taken when it arrives (the measured state)."""
@@ -123,13 +128,11 @@ class TrajectoryOptimizerNode(Node):
         def answer(status, reason, plan=None, stamp=-1):
             return self._answer(
                     request.request_id, request.motion, request.backend, status, reason, plan, stamp)
-        if finished.dropped:
-            return answer(OutcomeStatus.SUPERSEDED, finished.dropped)
-        if isinstance(finished.error, (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)):
-            return answer(OutcomeStatus.REJECTED, str(finished.error))
-        if finished.error is not None:  # a bug must end in a failure outcome, not a dead node
-            self.get_logger().error(f"request {request.request_id} crashed the optimiser: {finished.error!r}")
-            return answer(OutcomeStatus.FAILURE, f"internal error: {finished.error!r}")
+        settled = finished.answer_without_result(BAD_INPUT)
+        if settled is not None:
+            if settled[0] is OutcomeStatus.FAILURE:  # a bug: a failure outcome, not a dead node
+                self.get_logger().error(f"request {request.request_id} crashed the optimiser: {finished.error!r}")
+            return answer(*settled)
         if not plan.succeeded:
             result = plan.result
             return answer(OutcomeStatus.FAILURE, f"{result.outcome.value}: constraint '{result.violated_constraint}' "
