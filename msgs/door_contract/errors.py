@@ -1,7 +1,12 @@
-"""Errors raised by the message contract's converters and parameter validation."""
+"""Errors raised by the message contract's converters and parameter validation.
+
+:class:`ContractError` is the package's one base error. It is deliberately *not* a
+:class:`ValueError`: a node that rejects a message on ``except ContractError`` must not also
+reject the ``ValueError`` of a bug (numpy, float(), an enum lookup) as bad input.
+"""
 
 
-class ContractError(ValueError):
+class ContractError(Exception):
     """A message or parameter does not satisfy the contract; the message says which part."""
 
 

@@ -29,7 +29,7 @@ from typing import Any, TypeVar
 
 from door_contract.errors import ContractError
 from door_contract.json_text import read_request_id
-from door_contract.payloads import decode
+from door_contract.payloads import OutcomeStatus, decode
 
 Request = TypeVar("Request")
 
@@ -53,6 +53,21 @@ class Finished:
     result: Any = None
     error: BaseException | None = None
     dropped: str = ""  # non-empty: superseded or cancelled; answer SUPERSEDED, propose nothing
+
+    def answer_without_result(self, refusals: tuple[type[BaseException], ...]) -> tuple[OutcomeStatus, str] | None:
+        """How a request that has no result to propose is answered, or None when it has one.
+
+        SUPERSEDED when it was dropped; REJECTED with the error's text when the job refused
+        its input with one of ``refusals`` (the node's bad-input errors: never a bare
+        ``ValueError``, which a bug raises too); FAILURE ``"internal error: …"`` for any
+        other exception: a bug ends the request, not the node."""
+        if self.dropped:
+            return OutcomeStatus.SUPERSEDED, self.dropped
+        if self.error is None:
+            return None
+        if isinstance(self.error, refusals):
+            return OutcomeStatus.REJECTED, str(self.error)
+        return OutcomeStatus.FAILURE, f"internal error: {self.error!r}"
 
 
 class CancelResult(str, Enum):

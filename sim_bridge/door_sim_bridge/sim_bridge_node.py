@@ -136,7 +136,12 @@ class SimBridgeNode(Node):
         except ContractError as error:
             self._report(ExecutionOutcome(ExecutionKind.TRAJECTORY, request_id, OutcomeStatus.REJECTED, str(error)))
             return
-        self._start(TrajectoryExecution.from_joint_path(self.world, path), ExecutionKind.TRAJECTORY, request_id)
+        try:
+            execution = TrajectoryExecution.from_joint_path(self.world, path)
+        except Exception as error:  # a bug must end in a failure outcome, not a dead node
+            self._internal_error(ExecutionKind.TRAJECTORY, request_id, error)
+            return
+        self._start(execution, ExecutionKind.TRAJECTORY, request_id)
 
     def _on_footsteps(self, msg: Path) -> None:
         if not msg.poses:
@@ -148,7 +153,12 @@ class SimBridgeNode(Node):
         except ContractError as error:
             self._report(ExecutionOutcome(ExecutionKind.FOOTSTEPS, request_id, OutcomeStatus.REJECTED, str(error)))
             return
-        self._start(FootstepExecution(self.world, steps), ExecutionKind.FOOTSTEPS, request_id)
+        try:
+            execution = FootstepExecution(self.world, steps)
+        except Exception as error:  # a bug must end in a failure outcome, not a dead node
+            self._internal_error(ExecutionKind.FOOTSTEPS, request_id, error)
+            return
+        self._start(execution, ExecutionKind.FOOTSTEPS, request_id)
 
     def _stop(self, kind: ExecutionKind | None, why: str) -> None:
         """Stop the running execution if it is of ``kind`` (None: any); it reports STOPPED."""
@@ -183,6 +193,10 @@ class SimBridgeNode(Node):
         response.success, response.message = bool(result.success), result.message
         self.get_logger().info(f"{side.value} hand {'close' if request.data else 'open'}: {result.message}")
         return response
+
+    def _internal_error(self, kind: ExecutionKind, request_id: int, error: Exception) -> None:
+        self.get_logger().error(f"{kind.value} {request_id} crashed the execution: {error!r}")
+        self._report(ExecutionOutcome(kind, request_id, OutcomeStatus.FAILURE, f"internal error: {error!r}"))
 
     def _report(self, outcome: ExecutionOutcome) -> None:
         self.publishers_by_name["EXECUTION_OUTCOME"].publish(String(data=encode(outcome)))

@@ -1,5 +1,6 @@
 """ament_python package door_bringup: Runs the graph without ros2 launch, records and plays rosbag2 bags, operator console."""
 
+import os
 from glob import glob
 
 from setuptools import find_packages, setup
@@ -15,8 +16,10 @@ setup(
         ("share/ament_index/resource_index/packages", [f"resource/{PACKAGE}"]),
         (f"share/{PACKAGE}", ["package.xml"]),
         (f"share/{PACKAGE}/launch", glob("launch/*.launch.py")),
-        # The repository's params/ (node parameters and robot profiles), for installed use.
-        (f"share/{PACKAGE}/params", sorted(glob("../../params/*.yaml"))),
+        # The repository's node parameter files, for installed use; the robot profiles
+        # (params/robot_*.yaml) are door_robot's and installed by door_robot.
+        (f"share/{PACKAGE}/params", sorted(p for p in glob("../../params/*.yaml")
+                                           if not os.path.basename(p).startswith("robot_"))),
     ],
     install_requires=["setuptools"],
     zip_safe=True,

@@ -1,5 +1,7 @@
 """ament_python package door_robot: Robot profiles (TALOS, Atlas v4, DRC-HUBO) and Pinocchio kinematics; ROS-free."""
 
+from glob import glob
+
 from setuptools import find_packages, setup
 
 PACKAGE = "door_robot"
@@ -12,6 +14,9 @@ setup(
     data_files=[
         ("share/ament_index/resource_index/packages", [f"resource/{PACKAGE}"]),
         (f"share/{PACKAGE}", ["package.xml"]),
+        # The robot profiles (params/robot_*.yaml of the repository), found here when installed
+        # (door_robot.locations.params_dir; the folder name is locations.PROFILES_SHARE).
+        (f"share/{PACKAGE}/profiles", sorted(glob("../../params/robot_*.yaml"))),
     ],
     install_requires=["setuptools"],
     zip_safe=True,

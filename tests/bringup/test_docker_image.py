@@ -1,9 +1,11 @@
 """The Docker image is built as on a real Jazzy install: every package.xml names what its code
-imports, with keys rosdep resolves; the keys rosdep cannot (or must not) install are exactly
+imports — message packages it reaches through door_contract's Topics/Services included — and
+nothing it does not, with keys rosdep resolves; the keys rosdep cannot (or must not) install are exactly
 docker/pip-keys.txt, which the image installs from requirements.txt with pip instead; no ROS
 wheels from PyPI; no venv, runs or build trees in the build context."""
 
 import ast
+import re
 import sys
 import xml.etree.ElementTree as ElementTree
 
@@ -24,18 +26,55 @@ ROS_PACKAGES = {"rclpy", "rcl_interfaces", "builtin_interfaces", "std_msgs", "ge
                 "launch", "launch_ros", "ament_index_python", "ros2bag", "rosbag2_storage_mcap"}
 
 
+INTERFACE_NAME = re.compile(r"^(\w+)/(?:msg|srv|action)/\w+$")
+#: declared, never imported by the package's code, and needed all the same (why)
+RUNTIME_ONLY = {
+    "src/door_robot": {"python3-example-robot-data-pip": "the profiles' URDFs and meshes are its data files"},
+    "src/door_bringup": {"ros2bag": "a run's bags are read with `ros2 bag` on a real install",
+                         "rosbag2_storage_mcap": "`ros2 bag` reads the mcap bags (--storage mcap)"},
+}
+
+
 def _name_and_depends(workspace, folder):
     root = ElementTree.parse(workspace.root / folder / "package.xml").getroot()
     depends = {e.text for tag in ("exec_depend", "depend") for e in root.iter(tag)}
     return root.find("name").text, depends
 
 
-def _imports(workspace, folder, own_modules):
-    modules = set()
-    for path in (workspace.root / folder).rglob("*.py"):
+def _trees(workspace, folder):
+    for path in sorted((workspace.root / folder).rglob("*.py")):
         if path.name == "setup.py" or "test" in path.parts:
             continue
-        for node in ast.walk(ast.parse(path.read_text())):
+        yield ast.parse(path.read_text())
+
+
+def _interface_packages(workspace, folder):
+    """The message packages the code imports by name: door_contract's ``interface_class`` imports
+    the type of every ``Topics.X`` / ``Services.X`` a node subscribes to, publishes or serves
+    (also ``getattr(Topics, "X")`` with a literal name, and ``Services.all()``), and every
+    interface it names in full (``"sensor_msgs/msg/Image"``: the contract's own topic table)."""
+    from door_contract.topics import Services, ServiceSpec, Topics, TopicSpec
+    tables = {"Topics": Topics, "Services": Services}
+    packages = set()
+    for tree in _trees(workspace, folder):
+        nodes = list(ast.walk(tree))
+        names = {(n.value.id, n.attr) for n in nodes if isinstance(n, ast.Attribute) and isinstance(n.value, ast.Name)
+                 and n.value.id in tables}
+        if any(table == "Topics" for table, _ in names):  # getattr(Topics, t) over literal names
+            names |= {("Topics", n.value) for n in nodes if isinstance(n, ast.Constant) and isinstance(n.value, str)}
+        packages |= {match.group(1) for n in nodes if isinstance(n, ast.Constant) and isinstance(n.value, str)
+                     for match in [INTERFACE_NAME.match(n.value)] if match}  # "sensor_msgs/msg/Image"
+        specs = [getattr(tables[table], attr, None) for table, attr in names]
+        if ("Services", "all") in names:
+            specs += Services.all()
+        packages |= {s.type_name.split("/")[0] for s in specs if isinstance(s, (TopicSpec, ServiceSpec))}
+    return packages
+
+
+def _imports(workspace, folder, own_modules):
+    modules = set()
+    for tree in _trees(workspace, folder):
+        for node in ast.walk(tree):
             if isinstance(node, ast.Import):
                 modules |= {alias.name.split(".")[0] for alias in node.names}
             elif isinstance(node, ast.ImportFrom) and node.level == 0 and node.module:
@@ -48,13 +87,22 @@ def test_package_xml_names_every_import(workspace, folder):
     workspace_packages = {_name_and_depends(workspace, f)[0] for f in PACKAGES}
     name, depends = _name_and_depends(workspace, folder)
     missing = set()
-    for module in _imports(workspace, folder, {name}):
+    for module in _imports(workspace, folder, {name}) | _interface_packages(workspace, folder):
         key = IMPORT_KEYS.get(module, module)
         assert key in IMPORT_KEYS.values() or key in ROS_PACKAGES or key in workspace_packages, \
             f"{folder} imports {module}: add it to IMPORT_KEYS with its rosdep key"
         if key not in depends:
             missing.add(key)
     assert not missing, f"{folder}/package.xml lacks exec_depend {sorted(missing)}"
+
+
+@pytest.mark.parametrize("folder", PACKAGES)
+def test_package_xml_names_nothing_the_package_does_not_use(workspace, folder):
+    name, depends = _name_and_depends(workspace, folder)
+    used = {IMPORT_KEYS.get(m, m) for m in _imports(workspace, folder, {name}) | _interface_packages(workspace, folder)}
+    stale = depends - used - set(RUNTIME_ONLY.get(folder, {}))
+    assert not stale, f"{folder}/package.xml declares {sorted(stale)}, which its code never imports " \
+                      f"(or name it in RUNTIME_ONLY with the reason)"
 
 
 def test_pip_keys_are_the_declared_keys_rosdep_does_not_install(workspace):

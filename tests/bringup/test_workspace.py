@@ -4,6 +4,7 @@ process over real DDS, shows its node in the graph and shuts down cleanly on SIG
 import os
 import re
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -124,3 +125,21 @@ def test_every_entry_point_defaults_discovery_to_localhost():
 
 def _logs(log_dir: Path) -> str:
     return "\n".join(f"--- {p.name}\n{p.read_text()[-2000:]}" for p in sorted(log_dir.glob("*.log")))
+
+
+def test_the_installed_door_robot_finds_the_robot_profiles_in_its_own_share(workspace, tmp_path):
+    """Robot profiles are door_robot's: installed in share/door_robot/profiles and found there
+    through the ament index (no checkout params/, no $DOOR_PARAMS_DIR, nothing of door_bringup)."""
+    env = workspace.environment()
+    env.pop("DOOR_PARAMS_DIR")
+    script = ("import door_robot.locations, door_robot.profile as p; print(door_robot.locations.__file__); "
+              "print(p.profile_path('talos')); p.load_profile('talos')")
+    result = subprocess.run([sys.executable, "-c", script], env=env, cwd=tmp_path, capture_output=True, text=True,
+                            timeout=60)
+    assert result.returncode == 0, result.stdout + result.stderr
+    module, profile = result.stdout.split()
+    share = workspace.install / "door_robot" / "share" / "door_robot" / "profiles"
+    assert Path(module).is_relative_to(workspace.install / "door_robot")  # the installed copy, not the sources
+    assert Path(profile) == share / "robot_talos.yaml"
+    assert {p.name for p in share.iterdir()} == {p.name for p in (workspace.root / "params").glob("robot_*.yaml")}
+    assert not list((workspace.install / "door_bringup" / "share" / "door_bringup" / "params").glob("robot_*"))

@@ -4,8 +4,11 @@ a cancel drops a request, a failing job is an answer too."""
 import threading
 from dataclasses import dataclass
 
-from door_contract.payloads import FootstepRequest, encode
-from door_contract.planner_service import CancelResult, PlanningWorker, decode_request
+import pytest
+
+from door_contract.errors import ContractError
+from door_contract.payloads import FootstepRequest, OutcomeStatus, encode
+from door_contract.planner_service import CancelResult, Finished, PlanningWorker, decode_request
 
 DEADLINE_S = 10.0  # a safety net far above the milliseconds these jobs take
 
@@ -88,6 +91,20 @@ def test_a_failing_job_is_answered_with_its_error():
     answers = node.wait_for(1)
     assert isinstance(answers[3].error, ZeroDivisionError)
     node.worker.close()
+
+
+@pytest.mark.parametrize("finished, answer", [
+    (Finished(Request(1), result="plan"), None),
+    (Finished(Request(1), dropped="superseded by request 2"), (OutcomeStatus.SUPERSEDED, "superseded by request 2")),
+    (Finished(Request(1), error=ContractError("no door estimate yet")), (OutcomeStatus.REJECTED, "no door estimate yet")),
+    # a bug's ValueError (numpy, float(), an enum lookup) is no refusal of the input
+    (Finished(Request(1), error=ValueError("operands could not be broadcast")),
+     (OutcomeStatus.FAILURE, "internal error: ValueError('operands could not be broadcast')")),
+    (Finished(Request(1), error=ZeroDivisionError("division by zero")),
+     (OutcomeStatus.FAILURE, "internal error: ZeroDivisionError('division by zero')")),
+])
+def test_bad_input_is_rejected_and_a_bug_is_an_internal_failure(finished, answer):
+    assert finished.answer_without_result((ContractError,)) == answer
 
 
 def test_decode_request_reads_the_id_of_an_invalid_request():

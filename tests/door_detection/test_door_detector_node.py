@@ -93,7 +93,7 @@ def test_bad_frames_give_no_estimate_and_the_node_lives_on(camera, rendered):
         camera.publish(100.0 + index, colour, depth_image, intrinsics, frame.camera_pose, encoding)
     assert spin_until(camera.executor, lambda: camera.rejected and camera.rejected[-1] >= len(bad_frames), 30.0)
     assert not any(100.0 <= e.stamp < 104.0 for e in camera.estimates)  # (a latched older one may arrive)
-    assert "door_detector" in camera.node.get_node_names()
+    assert spin_until(camera.executor, lambda: "door_detector" in camera.node.get_node_names(), 10.0)  # graph: a deadline
 
 
 def test_rendered_frames_give_a_voted_estimate_in_odom(camera, rendered, detector):
@@ -156,4 +156,4 @@ def test_frames_without_camera_info_are_reported(camera, rendered):
         if spin_until(camera.executor, reported, 0.5):
             break
     assert reported(), camera.messages[-3:]
-    assert "door_detector" in camera.node.get_node_names()
+    assert spin_until(camera.executor, lambda: "door_detector" in camera.node.get_node_names(), 10.0)  # graph: a deadline

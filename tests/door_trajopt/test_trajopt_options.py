@@ -71,7 +71,7 @@ def test_sqp_options_reject_out_of_range(field: str, value: object) -> None:
 def test_error_message_states_allowed_range() -> None:
     with pytest.raises(TrajoptError, match=r"\(0.0, 1.0\]"):
         ChompOptions(step_size=2.0)
-    assert issubclass(TrajoptError, ValueError)
+    assert not issubclass(TrajoptError, ValueError)
 
 
 def test_defaults_are_valid() -> None:

@@ -23,7 +23,7 @@ from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.goals import stand_pose_for_opening, through_door_pose
 from footstep_planner.obstacles import Obstacle
 from footstep_planner.options import FootstepPlannerOptions
-from footstep_planner.plan import PlanOutcome, PlanResult
+from footstep_planner.plan import InputProblem, PlanOutcome, PlanResult
 from footstep_planner.world import World
 
 OPEN_SPACE = FootstepPlanner(World())
@@ -183,9 +183,12 @@ def test_start_in_collision_or_not_finite_is_rejected() -> None:
     world = World((Obstacle.rectangle("crate", (0.0, 0.3), 0.0, 0.3, 0.3),))
     colliding = FootstepPlanner(world).plan(stance_at(0.0, 0.0), Pose2D(1.0, 0.0, 0.0))
     assert colliding.outcome is PlanOutcome.INVALID_START
+    assert colliding.input_problem is InputProblem.START_COLLIDES
     assert "crate" in colliding.reason
     not_finite = OPEN_SPACE.plan(stance_at(math.nan, 0.0), Pose2D(1.0, 0.0, 0.0))
     assert not_finite.outcome is PlanOutcome.INVALID_START
+    assert not_finite.input_problem is InputProblem.START_NOT_FINITE
+    assert OPEN_SPACE.plan(stance_at(0.0, 0.0), Pose2D(1.0, 0.0, 0.0)).input_problem is None
 
 
 def test_snap_to_goal_ends_exactly_on_the_stand_pose() -> None:
@@ -216,13 +219,21 @@ def test_a_start_inside_the_safety_margins_is_planned_without_them() -> None:
     world = World((Obstacle.rectangle("crate", (0.0, near + 0.15), 0.0, 0.3, 0.3),))
     planner = FootstepPlanner(world, options)
     start, goal = stance_at(0.0, 0.0), Pose2D(0.0, -0.6, 0.0)
-    assert planner.plan(start, goal).outcome is PlanOutcome.INVALID_START
+    refused = planner.plan(start, goal)
+    assert refused.outcome is PlanOutcome.INVALID_START and refused.input_problem is InputProblem.START_COLLIDES
     result, relaxed_from = planner.plan_from_within_margins(start, goal)
     _succeeded(result)
     assert "crate" in relaxed_from
     inside = World((Obstacle.rectangle("crate", (0.0, 0.3), 0.0, 0.3, 0.3),))
-    result, _ = FootstepPlanner(inside, options).plan_from_within_margins(start, goal)
-    assert result.outcome is PlanOutcome.INVALID_START
+    result, relaxed_from = FootstepPlanner(inside, options).plan_from_within_margins(start, goal)
+    assert result.outcome is PlanOutcome.INVALID_START and relaxed_from  # tried without margins, still refused
+
+
+def test_only_a_colliding_start_is_planned_again_without_margins() -> None:
+    """The retry branches on the structured cause, not on the reason's words: a non-finite
+    start is refused once, without a second search."""
+    result, relaxed_from = OPEN_SPACE.plan_from_within_margins(stance_at(math.nan, 0.0), Pose2D(1.0, 0.0, 0.0))
+    assert result.input_problem is InputProblem.START_NOT_FINITE and relaxed_from == ""
 
 
 @pytest.mark.parametrize("goal", [Pose2D(2.5, 0.3, 0.0), Pose2D(2.0, -0.4, 0.0),

@@ -36,8 +36,10 @@ def test_out_of_range_value_names_the_field_and_range(field: str, value: float) 
     assert "allowed range" in str(caught.value)
 
 
-def test_error_is_a_value_error() -> None:
-    with pytest.raises(ValueError):
+def test_error_is_the_packages_own_not_a_value_error() -> None:
+    """The node rejects FootstepPlannerError as bad input; a bug's ValueError must not pass for one."""
+    assert not issubclass(FootstepPlannerError, ValueError)
+    with pytest.raises(FootstepPlannerError):
         FootstepPlannerOptions(max_stride=-1.0)
 
 

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from door_contract.vocabulary import Foot
+from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.plan import FootstepPlan, PlanOutcome, PlanResult
 
@@ -27,7 +28,7 @@ def test_body_yaw_is_the_circular_mean_of_the_feet() -> None:
 
 def test_stance_rejects_swapped_feet() -> None:
     left = Footstep(0.0, 0.1, 0.0, Foot.LEFT)
-    with pytest.raises(ValueError):
+    with pytest.raises(FootstepPlannerError, match="LEFT footstep"):
         Stance(left, left)
 
 

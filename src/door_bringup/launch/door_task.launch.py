@@ -1,7 +1,8 @@
 """Launch the door-traversal graph on a real ROS 2 Jazzy install: ``ros2 launch door_bringup door_task.launch.py``.
 
 Starts the five nodes of DESIGN.md and the proposal markers with their parameter files
-(installed under ``share/door_bringup/params``) and ``use_sim_time`` (the sim bridge publishes
+(installed under ``share/door_bringup/params``; the robot profiles they name are door_robot's,
+under ``share/door_robot/profiles``) and ``use_sim_time`` (the sim bridge publishes
 /clock); ``foxglove:=true`` adds the Foxglove WebSocket bridge (ws://127.0.0.1:8765).
 Where ``ros2 launch`` is unavailable, ``python -m door_bringup.graph`` does the same.
 """
@@ -26,8 +27,7 @@ def generate_launch_description() -> LaunchDescription:
         return Node(package=launch.package, executable=launch.executable, name=launch.node_name,
                     output="screen", emulate_tty=True,
                     parameters=[os.path.join(params, f"{launch.node_name}.yaml"),
-                                {"use_sim_time": launch.use_sim_time}],
-                    additional_env={"DOOR_PARAMS_DIR": params}, **kwargs)
+                                {"use_sim_time": launch.use_sim_time}], **kwargs)
 
     return LaunchDescription([
         DeclareLaunchArgument("foxglove", default_value="false", description="serve the graph on a Foxglove WebSocket"),

@@ -36,7 +36,7 @@ from door_contract.converters.camera_info import CameraIntrinsics
 from door_contract.vocabulary import Side
 from door_detection.door_pairs import DoorCandidate, corners_3d, door_surface_points, find_doors
 from door_detection.edges import edge_width, refine_door_edges
-from door_detection.errors import InputError
+from door_detection.errors import DetectionError, InputError
 from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
 from door_detection.grasp import locate_grasp
 from door_detection.handle import HandleBlob, find_handle, touches_border
@@ -46,8 +46,10 @@ from door_detection.options import DetectionOptions
 from door_detection.plane import refine_plane
 from door_detection.preprocessing import DepthError, RgbdFrame, validate_frame
 
-UNEXPECTED_ERRORS = (ArithmeticError, IndexError, ValueError, np.linalg.LinAlgError, cv2.error)
-"""Failures inside the pipeline that no input check foresaw: reported, never raised."""
+UNEXPECTED_ERRORS = (DetectionError, ArithmeticError, IndexError, ValueError, np.linalg.LinAlgError, cv2.error)
+"""Failures inside the pipeline that no input check foresaw: reported (INTERNAL_ERROR), never
+raised. Caught after :class:`InputError` (bad input); a :class:`DetectionError` that gets this
+far (e.g. a non-finite estimate built from a valid frame) is a bug of the pipeline."""
 
 
 class StageFailure(Exception):

@@ -110,7 +110,11 @@ class DoorDetectorNode(Node):
         frame[stream] = msg
         if len(frame) == len(STREAMS):
             del self.pending[key]
-            self._process(key, frame)
+            try:
+                self._process(key, frame)
+            except Exception as error:  # a bug drops this frame, it does not take the node down
+                self.get_logger().error(f"frame at {key:.2f} s crashed the detector: {error!r}")
+                self._reject(f"frame at {key:.2f} s: internal error: {error!r}")
         while len(self.pending) > 20:  # drop incomplete old frames, saying what they lacked
             old_stamp, parts = self.pending.popitem(last=False)
             self._report_incomplete(old_stamp, parts)

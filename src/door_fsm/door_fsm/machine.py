@@ -24,6 +24,7 @@ from door_contract.vocabulary import DoorOpening, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.approvals import approval_text, refusal
+from door_fsm.errors import DoorFsmError
 from door_fsm.operator_commands import AutonomyLevel, OperatorCommand, OperatorWord
 from door_fsm.records import PHASE_CLOCK, Instant, StateRecord
 from door_fsm.states import Phase, StateOutcome, TaskState
@@ -34,7 +35,7 @@ SUSPENDED = {OperatorCommand.PAUSE: TaskState.PAUSED, OperatorCommand.STOP: Task
              OperatorCommand.MANUAL: TaskState.MANUAL}
 
 
-class MachineOptionsError(Exception):
+class MachineOptionsError(DoorFsmError):
     """Options the machine cannot run with; the message names the option."""
 
 

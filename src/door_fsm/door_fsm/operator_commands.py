@@ -13,6 +13,8 @@ import re
 from dataclasses import dataclass
 from enum import Enum
 
+from door_fsm.errors import DoorFsmError
+
 MAX_COMMAND_CHARS = 200
 _REQUEST_ID = re.compile(r"#(\d+)\b")
 
@@ -44,7 +46,7 @@ class OperatorWord:
         return self.command.value if self.request_id is None else f"{self.command.value} {self.request_id}"
 
 
-class UnknownCommandError(Exception):
+class UnknownCommandError(DoorFsmError):
     """Text on /door_task/operator that is no command; the message says what is accepted."""
 
 
@@ -54,10 +56,9 @@ def parse_command(text: str) -> OperatorWord:
     if len(text) > MAX_COMMAND_CHARS:
         raise UnknownCommandError(f"operator command of {len(text)} characters refused")
     words = text.strip().lower().split()
-    try:
-        command = OperatorCommand(words[0] if words else "")
-    except ValueError:
-        raise UnknownCommandError(f"unknown operator command {shown!r}; use {usage()}") from None
+    command = next((c for c in OperatorCommand if words and c.value == words[0]), None)
+    if command is None:
+        raise UnknownCommandError(f"unknown operator command {shown!r}; use {usage()}")
     if not command.answers_a_request:
         if len(words) > 1:
             raise UnknownCommandError(f"'{command.value}' takes no request id (got {shown!r})")

@@ -10,14 +10,15 @@ from __future__ import annotations
 from collections import deque
 
 from door_contract.vocabulary import DoorOpening
+from door_fsm.errors import DoorFsmError
 from door_fsm.states import StateOutcome, TaskState
 from door_fsm.work import STATE_WORK
 
 Wiring = dict[tuple[TaskState, StateOutcome], TaskState]
 
 
-class WiringError(ValueError):
-    pass
+class WiringError(DoorFsmError):
+    """A wiring with an unrouted outcome, a state without work, or no way to DONE."""
 
 
 def success_sequence(opening: DoorOpening) -> tuple[TaskState, ...]:

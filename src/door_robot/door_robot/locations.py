@@ -1,6 +1,8 @@
 """Where profiles, URDFs and the shared test data are found (no globals: plain functions).
 
-* ``params/`` of this repository (or ``$DOOR_PARAMS_DIR``) holds the robot profiles;
+* the robot profiles ``robot_<name>.yaml`` are in ``$DOOR_PARAMS_DIR``, else in the checkout's
+  ``params/``, else (installed) in door_robot's own share, ``share/door_robot/profiles``
+  (door_robot's setup.py installs them there: this package never looks into another's share);
 * ``package: example-robot-data`` URDFs live under ``<site-packages>/cmeel.prefix/share``;
 * ``shared_data:`` URDFs live under ``$DOOR_SHARED_DATA`` or ``<repo>/../shared/data``.
 """
@@ -17,8 +19,13 @@ def repository_root() -> Path:
     return Path(__file__).resolve().parents[3]
 
 
+PROFILES_SHARE = "profiles"
+"""The folder of door_robot's share directory the robot profiles are installed in."""
+
+
 def params_dir() -> Path:
-    """$DOOR_PARAMS_DIR, else the checkout's params/, else share/door_bringup/params (installed)."""
+    """The folder of the robot profiles: $DOOR_PARAMS_DIR, else the checkout's params/, else
+    ``share/door_robot/profiles`` (installed; found through the ament index)."""
     if "DOOR_PARAMS_DIR" in os.environ:
         return Path(os.environ["DOOR_PARAMS_DIR"])
     in_checkout = repository_root() / "params"
@@ -26,7 +33,7 @@ def params_dir() -> Path:
         return in_checkout
     from ament_index_python.packages import get_package_share_directory
 
-    return Path(get_package_share_directory("door_bringup")) / "params"
+    return Path(get_package_share_directory("door_robot")) / PROFILES_SHARE
 
 
 def shared_data_dir() -> Path:

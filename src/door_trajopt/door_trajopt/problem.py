@@ -55,8 +55,13 @@ START_TOLERANCE = 1e-6
 """Largest allowed mismatch (rad or m) between a guess and a fixed waypoint."""
 
 
-class TrajoptError(ValueError):
-    """Invalid problem description or invalid solver options."""
+class TrajoptError(Exception):
+    """Invalid problem description or invalid solver options: the package's one base error.
+
+    Not a :class:`ValueError`, so a bug's ``ValueError`` is never taken for a refused
+    problem. The bad input of a request is the subclass
+    :class:`~door_trajopt.motions.DoorStateOutOfRange`, which the node reports as REJECTED;
+    any other error of a plan is a FAILURE ("internal error")."""
 
 
 class ConstraintKind(enum.Enum):

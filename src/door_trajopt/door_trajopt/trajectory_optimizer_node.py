@@ -62,10 +62,16 @@ from door_trajopt.motions import (
     support_polygon,
 )
 from door_trajopt.parameters import NODE_NAME, OPTIMIZER_PARAMETERS
+from door_trajopt.problem import TrajoptError
 
 
 class PlanningRefused(Exception):
     """A request that cannot be planned (bad or missing input); the message says why."""
+
+
+BAD_INPUT = (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)
+"""What a request's planning raises for bad input (answered REJECTED); anything else,
+:class:`~door_trajopt.problem.TrajoptError` of a built problem included, is a bug (FAILURE)."""
 
 
 @dataclass(frozen=True)
@@ -84,7 +90,7 @@ class TrajectoryOptimizerNode(Node):
         self.parameters = p
         with as_parameter_error(f"parameter 'robot_profile' = {p['robot_profile']!r}", RobotModelError):
             self.kinematics = RobotKinematics(load_profile(p["robot_profile"]))
-        with as_parameter_error("motion library options", ValueError):
+        with as_parameter_error("motion library options", TrajoptError):
             self.library = MotionLibrary(MotionOptions(
                 waypoints=p["waypoints"], handle_turn=p["handle_turn"], push_angle=p["push_angle"],
                 pull_angle=p["pull_angle"]), starts=p["initial_guesses"], velocity_scale=p["velocity_scale"])
@@ -122,13 +128,11 @@ class TrajectoryOptimizerNode(Node):
         def answer(status, reason, plan=None, stamp=-1):
             return self._answer(
                     request.request_id, request.motion, request.backend, status, reason, plan, stamp)
-        if finished.dropped:
-            return answer(OutcomeStatus.SUPERSEDED, finished.dropped)
-        if isinstance(finished.error, (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)):
-            return answer(OutcomeStatus.REJECTED, str(finished.error))
-        if finished.error is not None:  # a bug must end in a failure outcome, not a dead node
-            self.get_logger().error(f"request {request.request_id} crashed the optimiser: {finished.error!r}")
-            return answer(OutcomeStatus.FAILURE, f"internal error: {finished.error!r}")
+        settled = finished.answer_without_result(BAD_INPUT)
+        if settled is not None:
+            if settled[0] is OutcomeStatus.FAILURE:  # a bug: a failure outcome, not a dead node
+                self.get_logger().error(f"request {request.request_id} crashed the optimiser: {finished.error!r}")
+            return answer(*settled)
         if not plan.succeeded:
             result = plan.result
             return answer(OutcomeStatus.FAILURE, f"{result.outcome.value}: constraint '{result.violated_constraint}' "
@@ -140,11 +144,9 @@ class TrajectoryOptimizerNode(Node):
 
     def _plan(self, request: MotionRequest, snapshot: Snapshot) -> MotionPlan:
         """On the worker thread (the only user of the robot model and the library)."""
-        try:
-            motion = Motion(request.motion)
-        except ValueError:
-            raise PlanningRefused(f"unknown motion {request.motion!r}; known: "
-                                  + ", ".join(m.value for m in Motion)) from None
+        motion = next((m for m in Motion if m.value == request.motion), None)
+        if motion is None:
+            raise PlanningRefused(f"unknown motion {request.motion!r}; known: " + ", ".join(m.value for m in Motion))
         estimate = snapshot.estimate
         if estimate is None:
             raise PlanningRefused("no door estimate yet" if request.door_stamp < 0 else
@@ -153,10 +155,9 @@ class TrajectoryOptimizerNode(Node):
             raise PlanningRefused(door_estimate_problem(estimate))
         if snapshot.joint_positions is None or snapshot.base_pose is None:
             raise PlanningRefused("no valid joint states / odometry yet")
-        try:
-            backend = Backend(request.backend or self.parameters["backend"])
-        except ValueError:
-            raise PlanningRefused(f"unknown backend {request.backend!r}; use 'sqp' or 'chomp'") from None
+        backend = next((b for b in Backend if b.value == (request.backend or self.parameters["backend"])), None)
+        if backend is None:
+            raise PlanningRefused(f"unknown backend {request.backend!r}; use 'sqp' or 'chomp'")
         body_q = self.kinematics.configuration(
             {k: v for k, v in snapshot.joint_positions.items() if k in self.kinematics.joint_names})
         hand = grasp_hand(estimate.hinge_side, request.opening)

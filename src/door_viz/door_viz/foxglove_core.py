@@ -26,12 +26,13 @@ from pathlib import Path
 from rosbags.typesys import Stores, get_typestore
 
 from door_robot.meshes import resolve_package_uri
+from door_viz.errors import DoorVizError
 
 STRING_TYPE = "std_msgs/msg/String"
 JSON_ENCODING = "json"
 
 
-class ClientCommandError(ValueError):
+class ClientCommandError(DoorVizError):
     """A client's message that is not a std_msgs/String in JSON."""
 
 

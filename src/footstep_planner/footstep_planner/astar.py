@@ -45,7 +45,7 @@ from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.geometry import Bounds
 from footstep_planner.heuristic import is_goal_centre
 from footstep_planner.options import FootstepPlannerOptions
-from footstep_planner.plan import FootstepPlan, PlanOutcome, PlanResult, failed
+from footstep_planner.plan import FootstepPlan, InputProblem, PlanOutcome, PlanResult, failed
 from footstep_planner.progress import ProgressTable
 from footstep_planner.pruning import LegPruning
 from footstep_planner.reachability import CELL_SIZE, ReachabilityQuery, may_reach
@@ -119,7 +119,8 @@ class FootstepPlanner:
         search_options = options_for_attempt(self._options, attempt)
         rejection = self._reject(start, goal)
         if rejection is not None:
-            return failed(rejection[0], rejection[1], 0, started)
+            outcome, problem, reason = rejection
+            return failed(outcome, reason, 0, started, problem)
         if self._at_goal(start, goal):
             plan = FootstepPlan(start, goal, (), 0.0, 0, time.perf_counter() - started)
             return PlanResult(PlanOutcome.SUCCESS, "already standing at the goal", plan, 0,
@@ -129,7 +130,7 @@ class FootstepPlanner:
         roots = tuple(step for step in (start.left, start.right) if self._state_is_free(step))
         if not roots:
             return failed(PlanOutcome.INVALID_START, "no room for a first step: the body "
-                            "over either start foot would collide", 0, started)
+                          "over either start foot would collide", 0, started, InputProblem.NO_FIRST_STEP)
         if not may_reach(self._world, self._reachability_query(roots, goal, bounds)):
             return failed(PlanOutcome.UNREACHABLE, "the goal is walled off: no collision-free "
                             f"corridor for the body on a {CELL_SIZE} m grid", 0, started)
@@ -146,26 +147,26 @@ class FootstepPlanner:
         Returns the result and, when the margins were dropped, why (else "").
         """
         result = self.plan(start, goal, attempt=attempt)
-        if result.outcome is not PlanOutcome.INVALID_START or "collides" not in result.reason:
+        if result.input_problem is not InputProblem.START_COLLIDES:
             return result, ""
         if self._options.body_margin == 0.0 and self._options.foot_margin == 0.0:
             return result, ""
         tight = FootstepPlanner(self._world, replace(self._options, body_margin=0.0, foot_margin=0.0))
         return tight.plan(start, goal, attempt=attempt), result.reason
 
-    def _reject(self, start: Stance, goal: Pose2D) -> tuple[PlanOutcome, str] | None:
+    def _reject(self, start: Stance, goal: Pose2D) -> tuple[PlanOutcome, InputProblem, str] | None:
         """Why the request cannot be planned at all, or None."""
         if not start.is_finite():
-            return PlanOutcome.INVALID_START, f"start stance is not finite: {start}"
+            return PlanOutcome.INVALID_START, InputProblem.START_NOT_FINITE, f"start stance is not finite: {start}"
         if not goal.is_finite():
-            return PlanOutcome.INVALID_GOAL, f"goal pose is not finite: {goal}"
+            return PlanOutcome.INVALID_GOAL, InputProblem.GOAL_NOT_FINITE, f"goal pose is not finite: {goal}"
         start_collision = self._checker.stance_collision(start)
         if start_collision is not None:
-            return PlanOutcome.INVALID_START, f"start stance collides: {start_collision}"
+            return PlanOutcome.INVALID_START, InputProblem.START_COLLIDES, f"start stance collides: {start_collision}"
         goal_stance = Stance.nominal(goal, self._options.nominal_foot_separation)
         goal_collision = self._checker.stance_collision(goal_stance)
         if goal_collision is not None:
-            return PlanOutcome.INVALID_GOAL, f"goal stance collides: {goal_collision}"
+            return PlanOutcome.INVALID_GOAL, InputProblem.GOAL_COLLIDES, f"goal stance collides: {goal_collision}"
         return None
 
     def _at_goal(self, start: Stance, goal: Pose2D) -> bool:

@@ -5,12 +5,16 @@ Bad *configuration* (an option out of range, a malformed door) raises
 wall, unreachable goal) never raises: the planner returns a failure
 :class:`~footstep_planner.plan.PlanOutcome` with a human-readable reason, so a
 node can publish it and keep running.
+
+:class:`FootstepPlannerError` is the package's one base error. It is not a
+:class:`ValueError`: the node reports it as a REJECTED request, and a ``ValueError`` from a
+bug must instead end as a FAILURE ("internal error").
 """
 
 from __future__ import annotations
 
 
-class FootstepPlannerError(ValueError):
+class FootstepPlannerError(Exception):
     """A value given to the footstep planner core is invalid.
 
     ``field`` names the offending option or argument (empty when the error is

@@ -13,6 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from door_contract.vocabulary import Foot
+from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.geometry import FloatArray, rectangle_corners, wrap_angle
 
 
@@ -89,7 +90,7 @@ class Stance:
 
     def __post_init__(self) -> None:
         if self.left.foot is not Foot.LEFT or self.right.foot is not Foot.RIGHT:
-            raise ValueError("Stance needs a LEFT footstep as left and a RIGHT footstep as right")
+            raise FootstepPlannerError("Stance needs a LEFT footstep as left and a RIGHT footstep as right")
 
     @classmethod
     def nominal(cls, body: Pose2D, separation: float) -> Stance:

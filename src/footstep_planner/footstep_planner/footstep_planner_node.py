@@ -74,7 +74,11 @@ __all__ = ["FootstepPlannerNode", "door_geometry_from_estimate", "planner_option
 
 
 class RequestRefused(Exception):
-    pass
+    """A request the node cannot plan from its inputs (no odometry, no usable door estimate)."""
+
+
+BAD_INPUT = (RequestRefused, FootstepPlannerError, ContractError)
+"""What a request's planning raises for bad input (answered REJECTED); anything else is a bug."""
 
 
 @dataclass(frozen=True)
@@ -130,15 +134,11 @@ class FootstepPlannerNode(Node):
     def _deliver_one(self, finished: Finished) -> None:
         """On the executor thread: one outcome per finished request, and the plan if proposed."""
         request = finished.request
-        if finished.dropped:
-            self._answer(request.request_id, request.goal, OutcomeStatus.SUPERSEDED, finished.dropped)
-            return
-        if isinstance(finished.error, (RequestRefused, FootstepPlannerError, ContractError)):
-            self._answer(request.request_id, request.goal, OutcomeStatus.REJECTED, str(finished.error))
-            return
-        if finished.error is not None:  # a bug must end in a failure outcome, not a dead node
-            self.get_logger().error(f"request {request.request_id} crashed the planner: {finished.error!r}")
-            self._answer(request.request_id, request.goal, OutcomeStatus.FAILURE, f"internal error: {finished.error!r}")
+        settled = finished.answer_without_result(BAD_INPUT)
+        if settled is not None:
+            if settled[0] is OutcomeStatus.FAILURE:  # a bug: a failure outcome, not a dead node
+                self.get_logger().error(f"request {request.request_id} crashed the planner: {finished.error!r}")
+            self._answer(request.request_id, request.goal, *settled)
             return
         problem, result = finished.result.problem, finished.result.result
         start = problem.start

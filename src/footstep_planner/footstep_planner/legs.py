@@ -56,7 +56,7 @@ def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2
         if not result.succeeded or result.plan is None:  # a search that succeeded has a plan
             label = f"leg {number} of {len(legs)}" + (f" ({leg.name})" if leg.name else "")
             return PlanResult(result.outcome, f"{label}: {result.reason}", None,
-                              expansions, time.perf_counter() - started)
+                              expansions, time.perf_counter() - started, result.input_problem)
         steps.extend(_alternating(steps, stance, result.plan.steps))
         stance, cost = result.plan.final_stance, cost + result.plan.cost
     elapsed = time.perf_counter() - started

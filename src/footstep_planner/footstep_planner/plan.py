@@ -25,6 +25,19 @@ class PlanOutcome(Enum):
     """The goal pose is not finite or its stance collides."""
 
 
+class InputProblem(Enum):
+    """Which check refused an INVALID_START / INVALID_GOAL request before any search: the
+    structured cause callers branch on (the result's ``reason`` is text for people)."""
+
+    START_NOT_FINITE = "start_not_finite"
+    GOAL_NOT_FINITE = "goal_not_finite"
+    START_COLLIDES = "start_collides"
+    """The start stance itself collides (e.g. a walk stopped inside the safety margins)."""
+    GOAL_COLLIDES = "goal_collides"
+    NO_FIRST_STEP = "no_first_step"
+    """The start stance is free, but the body over either start foot would collide."""
+
+
 @dataclass(frozen=True)
 class FootstepPlan:
     """A collision-free footstep sequence from ``start`` to a stance at ``goal``.
@@ -69,6 +82,8 @@ class PlanResult:
     expansions: int
     planning_time: float
     """Wall time of the request (s)."""
+    input_problem: InputProblem | None = None
+    """Why the request was refused before any search (INVALID_START / INVALID_GOAL), else None."""
 
     @property
     def succeeded(self) -> bool:
@@ -76,6 +91,7 @@ class PlanResult:
         return self.outcome is PlanOutcome.SUCCESS
 
 
-def failed(outcome: PlanOutcome, reason: str, expansions: int, started: float) -> PlanResult:
+def failed(outcome: PlanOutcome, reason: str, expansions: int, started: float,
+           input_problem: InputProblem | None = None) -> PlanResult:
     """A failed :class:`PlanResult` timed from ``started`` (a ``time.perf_counter()`` value)."""
-    return PlanResult(outcome, reason, None, expansions, time.perf_counter() - started)
+    return PlanResult(outcome, reason, None, expansions, time.perf_counter() - started, input_problem)
