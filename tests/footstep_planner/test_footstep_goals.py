@@ -152,3 +152,22 @@ def test_bad_pull_stand_parameters_are_rejected(field: str, value: float) -> Non
     with pytest.raises(FootstepPlannerError) as caught:
         stand_pose_for_opening(door_facing_robot(DoorOpening.PULL), OPTIONS, **{field: value})
     assert caught.value.field == field
+
+
+@pytest.mark.parametrize("hinge_side", list(HingeSide))
+def test_each_leg_starts_with_the_other_foot_so_no_foot_steps_in_place(hinge_side: HingeSide) -> None:
+    """A walk and its mirror image step alike: the right-hinged pull passage used to begin its
+    walk along the wall with the foot that had ended the turn, and then stepped in place."""
+    door = door_facing_robot(DoorOpening.PULL, hinge_side=hinge_side, leaf_width=0.914, clear_opening=0.87,
+                             handle_offset=0.136)
+    options = replace(OPTIONS, snap_to_goal=True)
+    stand = stand_pose_for_opening(door, options, reach=0.65, sweep_half_depth=0.15)
+    start = Stance.nominal(stand, options.nominal_foot_separation)
+    result = plan_legs(FootstepPlanner(World(wall_obstacles(door)), options), start, pull_passage_waypoints(door, stand))
+    assert result.succeeded, result.reason
+    where = {start.left.foot: start.left.pose, start.right.foot: start.right.pose}
+    in_place = 0
+    for step in result.plan.steps:
+        in_place += where[step.foot].distance_to(step.pose) < 1e-3 and where[step.foot].yaw_difference(step.pose) < 1e-3
+        where[step.foot] = step.pose
+    assert in_place == 0

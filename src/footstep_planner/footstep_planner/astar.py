@@ -38,6 +38,7 @@ import math
 import time
 from dataclasses import replace
 
+from door_contract.vocabulary import Foot
 from footstep_planner.actions import ActionSet
 from footstep_planner.attempts import options_for_attempt
 from footstep_planner.footprint import FootprintChecker
@@ -104,7 +105,7 @@ class FootstepPlanner:
                                    self._options.goal_yaw_tolerance, yaw_window)
 
     def plan(self, start: Stance, goal: Pose2D, pruning: LegPruning = LegPruning(),
-             attempt: int = 0) -> PlanResult:
+             attempt: int = 0, first_foot: Foot | None = None) -> PlanResult:
         """Footsteps from the ``start`` stance to a nominal stance centred on ``goal``.
 
         Never raises on bad input: NaN/inf or colliding start and goal end in
@@ -113,7 +114,8 @@ class FootstepPlanner:
         ``pruning`` drops the states this leg never needs; ``attempt`` (0 = first
         try) selects the search settings of that repeat
         (:func:`~footstep_planner.attempts.options_for_attempt`; it raises
-        :class:`FootstepPlannerError` when out of range).
+        :class:`FootstepPlannerError` when out of range). ``first_foot`` is the foot that must
+        step first (None: whichever makes the cheaper plan).
         """
         started = time.perf_counter()
         search_options = options_for_attempt(self._options, attempt)
@@ -127,7 +129,8 @@ class FootstepPlanner:
                               plan.planning_time)
         bounds = Bounds.around([(start.body_pose.x, start.body_pose.y), (goal.x, goal.y)],
                                search_options.search_margin)
-        roots = tuple(step for step in (start.left, start.right) if self._state_is_free(step))
+        supports = (start.left, start.right) if first_foot is None else (start.foot(first_foot.other),)  # it stands on the other
+        roots = tuple(step for step in supports if self._state_is_free(step))
         if not roots:
             return failed(PlanOutcome.INVALID_START, "no room for a first step: the body "
                           "over either start foot would collide", 0, started, InputProblem.NO_FIRST_STEP)

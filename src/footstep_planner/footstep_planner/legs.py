@@ -37,8 +37,12 @@ class Leg:
 def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2D | Leg],
               attempt: int = 0) -> PlanResult:
     """Plan start → waypoints[0] → … → waypoints[-1]; each leg starts from the stance the
-    previous one ended in. The feet keep alternating across legs: when a leg would begin
-    with the foot that ended the previous one, the other foot first steps in place.
+    previous one ended in. The feet keep alternating across legs: a leg's first step is by
+    the foot that did not end the previous one, so a walk and its mirror image step alike
+    (free to choose, the search began a leg of the right-hinged pull passage with the other
+    foot than the left-hinged one did, and a step in place made up for it). Only when that
+    foot cannot start (its search fails) does the leg start with the other foot, after a step
+    in place.
 
     The first leg that fails ends the request with its outcome, its reason prefixed by
     the leg's number (and name); expansions and time are totals over the legs planned.
@@ -51,7 +55,11 @@ def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2
     steps: list[Footstep] = []
     legs = [Leg.of(waypoint) for waypoint in waypoints]
     for number, leg in enumerate(legs, start=1):
-        result = planner.plan(stance, leg.goal, leg.pruning, attempt=attempt)
+        result = planner.plan(stance, leg.goal, leg.pruning, attempt=attempt,
+                              first_foot=steps[-1].foot.other if steps else None)
+        if not result.succeeded and steps:
+            expansions += result.expansions
+            result = planner.plan(stance, leg.goal, leg.pruning, attempt=attempt)
         expansions += result.expansions
         if not result.succeeded or result.plan is None:  # a search that succeeded has a plan
             label = f"leg {number} of {len(legs)}" + (f" ({leg.name})" if leg.name else "")
