@@ -32,7 +32,7 @@ from door_robot.profile import RobotProfile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import RobotVisuals
-from door_sim_bridge.world.robot_urdf import box_sole_urdf
+from door_sim_bridge.world.robot_urdf import box_sole_urdf, profile_urdf
 from door_sim_bridge.world.transforms import invert, pose_matrix, position_quaternion, translation
 
 MOVABLE_JOINT_TYPES = (pybullet.JOINT_REVOLUTE, pybullet.JOINT_PRISMATIC)
@@ -70,7 +70,10 @@ class SimRobot:
         self._client = client
         self.profile = profile
         self.floating = floating
-        self.urdf_text = box_sole_urdf(profile) if floating else profile.urdf_path.read_text()
+        if floating:
+            self.urdf_text = box_sole_urdf(profile)
+        else:  # the profile's file as it is, unless the profile adds frames to it
+            self.urdf_text = profile_urdf(profile) if profile.extra_frames else profile.urdf_path.read_text()
         self.body = self._load(floating)
         infos = [client.getJointInfo(self.body, j) for j in range(client.getNumJoints(self.body))]
         self._parents = {j: info[16] for j, info in enumerate(infos)}
@@ -95,12 +98,12 @@ class SimRobot:
 
     def _load(self, floating: bool) -> int:
         flags = pybullet.URDF_USE_INERTIA_FROM_FILE
-        if not floating:
+        if not floating and not self.profile.extra_frames:  # the URDF as it is
             return self._client.loadURDF(str(self.profile.urdf_path), useFixedBase=True, flags=flags)
         with tempfile.TemporaryDirectory(prefix="door_robot_") as folder:
-            path = Path(folder) / f"{self.profile.name}_box_soles.urdf"
+            path = Path(folder) / f"{self.profile.name}_{'box_soles' if floating else 'frames'}.urdf"
             path.write_text(self.urdf_text)
-            return self._client.loadURDF(str(path), useFixedBase=False, flags=flags)
+            return self._client.loadURDF(str(path), useFixedBase=not floating, flags=flags)
 
     # ------------------------------------------------------------------ names
     def link_index(self, link: str) -> int:

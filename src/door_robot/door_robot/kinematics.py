@@ -46,8 +46,10 @@ class RobotKinematics:
         if self.model.nq != self.model.nv:
             raise RobotModelError(f"{profile.name}: continuous joints are not supported "
                                   f"(nq={self.model.nq}, nv={self.model.nv})")
+        for name, extra in profile.extra_frames.items():
+            self._add_frame(name, extra.parent, extra.xyz, "extra frame")
         for side, arm in profile.arms.items():
-            self._add_tcp_frame(profile.tcp_frame(side), arm.tcp_parent_frame, arm.grasp_offset)
+            self._add_frame(profile.tcp_frame(side), arm.tcp_parent_frame, arm.grasp_offset, "TCP")
         self.data = self.model.createData()
         self._evaluated = _EvaluatedConfiguration()
         self.joint_names: tuple[str, ...] = tuple(self.model.names[1:])
@@ -59,9 +61,9 @@ class RobotKinematics:
         self.walking_q = self.configuration(profile.walking_posture, base=self.nominal_q)
         self._check_profile_names()
 
-    def _add_tcp_frame(self, name: str, parent: str, offset: Sequence[float]) -> None:
+    def _add_frame(self, name: str, parent: str, offset: Sequence[float], what: str) -> None:
         if not self.model.existFrame(parent):
-            raise RobotModelError(f"{self.profile.name}: unknown TCP parent frame {parent!r}")
+            raise RobotModelError(f"{self.profile.name}: unknown {what} parent frame {parent!r}")
         parent_frame = self.model.frames[self.model.getFrameId(parent)]
         placement = parent_frame.placement * pin.SE3(np.eye(3), np.asarray(offset, dtype=float))
         self.model.addFrame(pin.Frame(name, parent_frame.parentJoint, self.model.getFrameId(parent),

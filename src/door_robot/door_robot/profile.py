@@ -31,6 +31,15 @@ class ArmSpec:
 
 
 @dataclass(frozen=True)
+class ExtraFrame:
+    """A frame the URDF lacks, fixed to ``parent`` at ``xyz`` (m, parent axes): e.g. a sole
+    frame on the sole plane for a robot whose URDF has only ankle links (Atlas, G1)."""
+
+    parent: str
+    xyz: tuple[float, float, float]
+
+
+@dataclass(frozen=True)
 class WalkingLimits:
     """Footstep limits of the robot ([Banerjee 2015] Sec. II: quasi-static walking)."""
 
@@ -57,6 +66,7 @@ class RobotProfile:
     nominal_posture: dict  # joint -> rad
     walking: WalkingLimits
     walking_posture: dict = field(default_factory=dict)  # joint -> rad over the nominal posture
+    extra_frames: dict = field(default_factory=dict)  # frame name -> ExtraFrame (added to every model)
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
@@ -96,7 +106,7 @@ def profile_path(name_or_path: str) -> Path:
 
 
 def load_profile(name_or_path: str = "talos") -> RobotProfile:
-    """Read and validate a robot profile (``talos``, ``atlas_v4``, ``drc_hubo`` or a path)."""
+    """Read and validate a robot profile (``talos``, ``atlas_v4``, ``drc_hubo``, ``g1`` or a path)."""
     document = yaml.safe_load(profile_path(name_or_path).read_text())
     try:
         return _profile_from_document(document)
@@ -127,4 +137,6 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         nominal_posture=posture,
         walking=WalkingLimits(**{k: float(v) for k, v in document["walking"].items()}),
         walking_posture={name: float(value) for name, value in (document.get("walking_posture") or {}).items()},
+        extra_frames={name: ExtraFrame(frame["parent"], _xyz(frame["xyz"]))
+                      for name, frame in (document.get("extra_frames") or {}).items()},
     )

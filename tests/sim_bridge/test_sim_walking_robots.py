@@ -1,0 +1,64 @@
+"""Robots other than TALOS stand and walk physically with the same walking controller.
+
+Everything robot-specific comes from the profile (sole frames, foot size, posture) or from
+the model; the figures are TALOS's (test_sim_walking.py): standing 10 s drifts < 1 cm, ten
+strides end within 3 cm of the plan, a 30° turn within 3°. The stride is the robot's own
+(``STRIDES``: scaled from TALOS's 0.2 m by leg length). One world per robot: the robot
+stands, then walks, then turns, as the tests run in order.
+
+Atlas v4 does not walk (its profile's comment and the README say why), so it is not listed.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from walk_plans import sole_error, straight_plan, turn_plan
+
+from door_contract.payloads import OutcomeStatus
+from door_sim_bridge.execution import FootstepExecution
+from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
+
+START = StanceConfig(distance=3.5)
+STRIDES = {"g1": 0.15, "drc_hubo": 0.2}  # m: G1's legs (hip to sole 0.69 m) are 0.8 × TALOS's
+SHARED_DATA = {"drc_hubo"}  # URDFs read from ../shared/data (tests skip without it)
+
+
+@pytest.fixture(scope="module", params=sorted(STRIDES))
+def world(request):
+    if request.param in SHARED_DATA:
+        request.getfixturevalue("shared_data")  # skips when ../shared/data is absent
+    with DoorWorld(WorldConfig(robot_profile=request.param, stance=START)) as sim:
+        yield sim
+
+
+def test_stands_for_10_seconds_with_less_than_1_cm_of_drift(world):
+    start = world.base_pose()
+    world.step(int(10.0 * world.config.physics_rate))
+    assert not world.fallen, world.fall_reason
+    assert np.linalg.norm(world.base_pose()[:2, 3] - start[:2, 3]) < 0.01
+    assert abs(world.base_pose()[2, 3] - start[2, 3]) < 0.01
+
+
+def test_walks_ten_strides_within_3_cm_of_the_plan(world):
+    stride = STRIDES[world.profile.name]
+    assert stride <= world.profile.walking.max_stride
+    x0 = world.base_pose()[0, 3]
+    plan = straight_plan(world, stride, 10)
+    result = FootstepExecution(world, plan).run()
+    assert result.status is OutcomeStatus.SUCCESS, result.reason
+    assert sole_error(world, plan)[0] < 0.03
+    assert world.base_pose()[0, 3] - x0 > 0.9 * 10 * stride  # it really walked
+
+
+def test_turns_30_degrees_in_place_within_3_degrees(world):
+    yaw0 = math.atan2(world.base_pose()[1, 0], world.base_pose()[0, 0])
+    plan = turn_plan(world, math.radians(10.0), 3)
+    result = FootstepExecution(world, plan).run()
+    assert result.status is OutcomeStatus.SUCCESS, result.reason
+    distance, heading = sole_error(world, plan)
+    assert heading < math.radians(3.0) and distance < 0.03
+    yaw = math.atan2(world.base_pose()[1, 0], world.base_pose()[0, 0])
+    assert math.remainder(yaw - yaw0, math.tau) == pytest.approx(math.radians(30.0), abs=math.radians(3.0))
