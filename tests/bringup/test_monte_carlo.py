@@ -1,9 +1,24 @@
-"""The Monte-Carlo's sampling and its printed summary, on synthetic reports (no graph)."""
+"""The Monte-Carlo's sampling, resuming and printed summary, on synthetic reports (no graph)."""
+
+import json
 
 import numpy as np
+import pytest
 
 from door_bringup.door_task import TaskOptions
-from door_bringup.monte_carlo import falls_line, overhead_line, sample_trial, summary
+from door_bringup.monte_carlo import (
+    SETTINGS_FILE,
+    TRIAL_FILE,
+    ResumeError,
+    _run_folder,
+    draw_trials,
+    falls_line,
+    overhead_line,
+    run_trials,
+    sample_trial,
+    summary,
+)
+from door_bringup.workspace import Workspace
 
 
 def _report(opening: str, done: bool, detection_s: float, planning_s: float) -> dict:
@@ -54,3 +69,32 @@ def test_falls_are_counted_per_phase_from_the_attempts_outcome():
     assert falls_line(reports) == "Falls: 3/5 runs (OPEN_DOOR 1, WALK_THROUGH 2)"
     assert falls_line([_report("push", True, 1.0, 0.5)]) == "Falls: 0/1 runs (none)"
     assert "Falls: 3/5" in summary(reports)
+
+
+def test_a_resumed_run_reads_its_finished_trials_and_runs_none_again(tmp_path):
+    settings = {"trials": 2, "seed": 4, "autonomy": "full", "camera_rate": 2.0, "openings": ["pull", "push"],
+                "timeout": 600.0}
+    (tmp_path / SETTINGS_FILE).write_text(json.dumps(settings))
+    trials = draw_trials(np.random.default_rng(4), TaskOptions(), 2, ["push", "pull"])
+    for index, opening in enumerate(("push", "pull")):
+        folder = tmp_path / f"trial_{index:03d}"
+        folder.mkdir()
+        (folder / TRIAL_FILE).write_text(json.dumps(_report(opening, index == 0, 1.0, 0.5)))
+    workspace = Workspace(tmp_path)  # a graph would need a built workspace: none is started
+    assert _run_folder(workspace, tmp_path, settings) == tmp_path
+    reports = run_trials(trials, tmp_path, workspace, jobs=2)
+    assert [r["final_state"] for r in reports] == ["DONE", "FAILED"]
+
+
+def test_a_run_is_not_resumed_with_other_settings(tmp_path):
+    (tmp_path / SETTINGS_FILE).write_text('{"trials": 50, "seed": 0}')
+    with pytest.raises(ResumeError, match="seed"):
+        _run_folder(Workspace(tmp_path), tmp_path, {"trials": 50, "seed": 1})
+    with pytest.raises(ResumeError, match="not a Monte-Carlo run folder"):
+        _run_folder(Workspace(tmp_path), tmp_path / "elsewhere", {"trials": 50, "seed": 0})
+
+
+def test_the_same_seed_draws_the_same_doors_in_the_same_order():
+    first = draw_trials(np.random.default_rng(7), TaskOptions(), 5, ["pull"])
+    assert first == draw_trials(np.random.default_rng(7), TaskOptions(), 5, ["pull"])
+    assert {trial.opening for trial in first} == {"pull"}

@@ -1,23 +1,30 @@
 """``door_monte_carlo``: the door task over randomised doors, as [Banerjee 2015]'s Table I.
 
-    python -m door_bringup.monte_carlo --trials 50 [--seed 0] [--autonomy full]
+    python -m door_bringup.monte_carlo --trials 50 [--seed 0] [--autonomy full] [--jobs 2]
+    python -m door_bringup.monte_carlo --trials 50 --resume runs/monte_carlo_<stamp>
 
 Each trial runs the whole graph (separate processes, real DDS) on a door drawn from the
 seed: push or pull, left or right hinge, start distance, lateral offset and yaw, door
 width, handle height, wind on the door and depth noise. Prints a progress bar, then
-success rates per phase and overall, and writes ``runs/monte_carlo_<stamp>/summary.md``.
+success rates per phase and overall, and writes ``runs/monte_carlo_<stamp>/summary.md``. Every
+finished trial is kept in ``trial_<n>/trial.json``: ``--resume`` reads those and runs the rest
+(the doors come from the seed, so the same settings draw the same doors).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import multiprocessing
+import os
 import statistics
 import sys
 import time
 from collections import Counter
+from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import asdict, replace
 from datetime import UTC, datetime
+from pathlib import Path
 
 import numpy as np
 
@@ -53,28 +60,115 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--camera-rate", type=float, default=2.0, help="head camera frames per second of sim time")
     parser.add_argument("--openings", nargs="+", choices=("push", "pull"), default=["push", "pull"])
     parser.add_argument("--timeout", type=float, default=600.0, help="per trial (s)")
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="trials at once, each graph in a ROS domain of its own (mind the cores: a loaded "
+                             "machine slows the graph, not the result)")
+    parser.add_argument("--resume", type=Path, metavar="RUN_DIR",
+                        help="a monte_carlo_<stamp> folder: its finished trials are read, the rest run")
     args = parser.parse_args(argv)
+    if args.trials < 1 or args.jobs < 1:
+        parser.error("--trials and --jobs must be at least 1")
     workspace = Workspace(repository_root())
-    stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%SZ")
-    out = workspace.root / "runs" / f"monte_carlo_{stamp}"
-    out.mkdir(parents=True, exist_ok=True)
-    rng = np.random.default_rng(args.seed)
+    settings = {"trials": args.trials, "seed": args.seed, "autonomy": args.autonomy,
+                "camera_rate": args.camera_rate, "openings": sorted(args.openings), "timeout": args.timeout}
+    try:
+        out = _run_folder(workspace, args.resume, settings)
+    except ResumeError as error:
+        parser.error(str(error))
     base = TaskOptions(autonomy=args.autonomy, timeout_s=args.timeout, record=False, camera_rate=args.camera_rate)
-    reports, started = [], time.monotonic()
-    for trial in range(args.trials):
-        options = sample_trial(rng, base, trial)
-        while options.opening not in args.openings:
-            options = sample_trial(rng, base, trial)
-        report = run_task(options, out / f"trial_{trial:03d}", workspace)
-        reports.append({"options": asdict(options), **report})
-        successes = sum(r["final_state"] == "DONE" for r in reports)
-        print(progress(trial + 1, args.trials, successes, started), end="", file=sys.stderr, flush=True)
-    print(file=sys.stderr)
+    trials = draw_trials(np.random.default_rng(args.seed), base, args.trials, args.openings)
+    reports = run_trials(trials, out, workspace, args.jobs)
     text = summary(reports)
     print(text)
     (out / "summary.md").write_text(text)
     (out / "trials.json").write_text(json.dumps(reports, indent=2, default=str))
     return 0
+
+
+def draw_trials(rng: np.random.Generator, base: TaskOptions, count: int, openings: list[str]) -> list[TaskOptions]:
+    """The seed's doors, in order (redrawn until the opening is one of ``openings``)."""
+    trials = []
+    for trial in range(count):
+        options = sample_trial(rng, base, trial)
+        while options.opening not in openings:
+            options = sample_trial(rng, base, trial)
+        trials.append(options)
+    return trials
+
+
+def _run_folder(workspace: Workspace, resume: Path | None, settings: dict) -> Path:
+    """A new ``runs/monte_carlo_<stamp>``, or the folder to resume (same settings, else ResumeError)."""
+    if resume is None:
+        out = workspace.root / "runs" / f"monte_carlo_{datetime.now(UTC).strftime('%Y%m%dT%H%M%SZ')}"
+        out.mkdir(parents=True, exist_ok=True)
+        (out / SETTINGS_FILE).write_text(json.dumps(settings, indent=2))
+        return out
+    recorded = resume / SETTINGS_FILE
+    if not recorded.is_file():
+        raise ResumeError(f"{resume} is not a Monte-Carlo run folder (no {SETTINGS_FILE})")
+    earlier = json.loads(recorded.read_text())
+    if earlier != settings:
+        differing = sorted(key for key in settings if earlier.get(key) != settings[key])
+        raise ResumeError(f"{resume} was run with other settings ({', '.join(differing)}): "
+                         f"{json.dumps({key: earlier.get(key) for key in differing})}")
+    return resume
+
+
+class ResumeError(Exception):
+    """A folder that cannot be resumed with these settings."""
+
+
+SETTINGS_FILE = "monte_carlo.json"
+TRIAL_FILE = "trial.json"
+
+
+def run_trials(trials: list[TaskOptions], out: Path, workspace: Workspace, jobs: int) -> list[dict]:
+    """Every trial's report, in order: read where ``trial_<n>/trial.json`` exists, run otherwise
+    (``jobs`` at a time, each in its own ROS domain), with a progress bar."""
+    reports: dict[int, dict] = {}
+    for index in range(len(trials)):
+        done = out / f"trial_{index:03d}" / TRIAL_FILE
+        if done.is_file():
+            reports[index] = json.loads(done.read_text())
+    if reports:
+        print(f"resuming: {len(reports)} of {len(trials)} trials already run", file=sys.stderr)
+    pending = [index for index in range(len(trials)) if index not in reports]
+    started = time.monotonic()
+
+    def finished(index: int, report: dict) -> None:
+        reports[index] = report
+        successes = sum(r["final_state"] == "DONE" for r in reports.values())
+        print(progress(len(reports), len(trials), successes, started), end="", file=sys.stderr, flush=True)
+
+    if jobs == 1:
+        for index in pending:
+            finished(index, run_trial(trials[index], out / f"trial_{index:03d}", workspace))
+    else:
+        domains: multiprocessing.Queue = multiprocessing.get_context("spawn").Queue()
+        first = int(os.environ.get("ROS_DOMAIN_ID", "0") or 0)
+        for offset in range(1, jobs + 1):
+            domains.put((first + offset) % 233)  # the domain ids DDS allows on one host
+        with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
+                                 initializer=_take_domain, initargs=(domains,)) as pool:
+            futures = {pool.submit(run_trial, trials[index], out / f"trial_{index:03d}", workspace): index
+                       for index in pending}
+            for future in as_completed(futures):
+                finished(futures[future], future.result())
+    print(file=sys.stderr)
+    return [reports[index] for index in range(len(trials))]
+
+
+def _take_domain(domains: multiprocessing.Queue) -> None:
+    """A pool worker's ROS domain, for good: its graphs never share DDS with another worker's."""
+    os.environ["ROS_DOMAIN_ID"] = str(domains.get())
+
+
+def run_trial(options: TaskOptions, trial_dir: Path, workspace: Workspace) -> dict:
+    """One trial; its report (with the options) is also written to ``trial_dir/trial.json``."""
+    report = {"options": asdict(options), **run_task(options, trial_dir, workspace)}
+    trial_dir.mkdir(parents=True, exist_ok=True)
+    (trial_dir / TRIAL_FILE).write_text(json.dumps(report, indent=2, default=str))
+    return report
 
 
 def summary(reports: list[dict]) -> str:
