@@ -38,7 +38,7 @@ from door_contract.node_support import (
     create_contract_publisher,
     create_contract_subscription,
     declare_parameters,
-    run_node,
+    node_main,
 )
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, encode
 from door_contract.stamps import stamp_ns, to_time_msg
@@ -274,9 +274,4 @@ class SimBridgeNode(Node):
         super().destroy_node()
 
 
-def main(args: list[str] | None = None) -> int:
-    return run_node(SimBridgeNode, args)
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+main = node_main(SimBridgeNode, __name__)

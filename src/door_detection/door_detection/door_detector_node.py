@@ -38,7 +38,7 @@ from door_contract.node_support import (
     create_contract_publisher,
     create_contract_subscription,
     declare_parameters,
-    run_node,
+    node_main,
 )
 from door_contract.parameters import require_ordered
 from door_contract.payloads import encode
@@ -188,9 +188,4 @@ class DoorDetectorNode(Node):
                                               from_time_msg(color_msg.header.stamp)))
 
 
-def main(args: list[str] | None = None) -> int:
-    return run_node(DoorDetectorNode, args)
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+main = node_main(DoorDetectorNode, __name__)

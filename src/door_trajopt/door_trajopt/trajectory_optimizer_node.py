@@ -31,7 +31,7 @@ from door_contract.node_support import (
     create_contract_publisher,
     create_contract_subscription,
     declare_parameters,
-    run_node,
+    node_main,
 )
 from door_contract.payloads import (
     DoorEstimate,
@@ -205,9 +205,4 @@ class TrajectoryOptimizerNode(Node):
         super().destroy_node()
 
 
-def main(args: list[str] | None = None) -> int:
-    return run_node(TrajectoryOptimizerNode, args)
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+main = node_main(TrajectoryOptimizerNode, __name__)

@@ -34,7 +34,7 @@ from door_contract.node_support import (
     as_parameter_error,
     create_contract_publisher,
     declare_parameters,
-    run_node,
+    node_main,
 )
 from door_contract.payloads import (
     DoorEstimate,
@@ -241,9 +241,4 @@ def footstep_markers(steps: list[FootPlacement], options: FootstepPlannerOptions
     return markers
 
 
-def main(args: list[str] | None = None) -> int:
-    return run_node(FootstepPlannerNode, args)
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+main = node_main(FootstepPlannerNode, __name__)
