@@ -49,7 +49,7 @@ from scipy.linalg import LinAlgError, cho_factor, cho_solve
 
 from door_trajopt.banded import KroneckerBandedCholesky, LowRankUpdatedMetric, MetricSolver
 from door_trajopt.evaluation import (
-    Backend,
+    BackendSolver,
     PointModel,
     PointValues,
     RunSummary,
@@ -172,7 +172,7 @@ def unit_rows(indices: IntArray, sign: float, n_variables: int) -> sp.csr_matrix
     return sp.csr_matrix((data, (rows, indices)), shape=(indices.size, n_variables))
 
 
-class ChompSolver(Backend[ChompOptions]):
+class ChompSolver(BackendSolver[ChompOptions]):
     """Constrained CHOMP for one problem; ``M`` is factorised in the constructor."""
 
     def __init__(self, problem: TrajectoryProblem, options: ChompOptions | None = None) -> None:

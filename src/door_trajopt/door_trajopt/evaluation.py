@@ -8,7 +8,7 @@ Also defines the exact :math:`\ell_1` merit function used for step acceptance
     \phi_\mu(\xi) = f(\xi) + \mu \Big( \sum_i |h_i(\xi)| + \sum_i \max(g_i(\xi), 0) \Big).
 
 Joint limits are never part of the merit: both backends keep every iterate
-inside the joint-limit box. :class:`Backend` is what the two solvers share around their loops
+inside the joint-limit box. :class:`BackendSolver` is what the two solvers share around their loops
 (options, evaluator, the guarded ``solve``).
 """
 
@@ -166,7 +166,7 @@ def build_result(
     )
 
 
-class Backend(abc.ABC, Generic[OptionsT]):
+class BackendSolver(abc.ABC, Generic[OptionsT]):
     """What both backends (:class:`~door_trajopt.sqp.SqpSolver`,
     :class:`~door_trajopt.chomp.ChompSolver`) share: the validated options, the problem's
     evaluator with its joint-limit box and pinned variables, and a :meth:`solve` that checks

@@ -52,7 +52,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from door_trajopt.evaluation import (
-    Backend,
+    BackendSolver,
     PointModel,
     PointValues,
     RunSummary,
@@ -288,7 +288,7 @@ class StepOutcome:
     multipliers: FloatArray | None = None
 
 
-class SqpSolver(Backend[SqpOptions]):
+class SqpSolver(BackendSolver[SqpOptions]):
     """TrajOpt-style SQP for one problem; the OSQP workspace persists across solves."""
 
     def __init__(self, problem: TrajectoryProblem, options: SqpOptions | None = None) -> None:
@@ -313,7 +313,7 @@ class SqpSolver(Backend[SqpOptions]):
             pattern = pattern + block_pattern(problem.n_free, problem.n_dof).astype(np.float64)
         return pattern.astype(bool).tocsr()
 
-    # --- the loop (Backend.solve checks the guess, then calls it) -----------
+    # --- the loop (BackendSolver.solve checks the guess, then calls it) -----
 
     def _run(self, guess: FloatArray, started: float) -> OptimizationResult:
         evaluator, options = self._evaluator, self._options
