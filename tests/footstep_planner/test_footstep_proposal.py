@@ -43,7 +43,8 @@ def _request(goal: WalkGoal = WalkGoal.STAND, door_stamp: float = -1.0) -> Foots
 
 
 def test_a_plan_starting_with_the_right_foot_steps_in_place_with_the_left_first() -> None:
-    placements = contract_footsteps(START, _plan(Footstep(0.2, -0.1, 0.0, Foot.RIGHT), Footstep(0.4, 0.1, 0.0, Foot.LEFT)))
+    right_first = _plan(Footstep(0.2, -0.1, 0.0, Foot.RIGHT), Footstep(0.4, 0.1, 0.0, Foot.LEFT))
+    placements = contract_footsteps(START, right_first)
     assert [p.foot for p in placements] == [Foot.LEFT, Foot.RIGHT, Foot.LEFT]
     assert (placements[0].x, placements[0].y) == (0.0, 0.1)                   # the left foot where it stands
     left_first = contract_footsteps(START, _plan(Footstep(0.2, 0.1, 0.0, Foot.LEFT)))

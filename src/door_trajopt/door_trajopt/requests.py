@@ -74,7 +74,8 @@ def motion_job(request: MotionRequest, snapshot: Snapshot, kinematics: RobotKine
     backend = next((b for b in Backend if b.value == (request.backend or default_backend)), None)
     if backend is None:
         raise PlanningRefused(f"unknown backend {request.backend!r}; use 'sqp' or 'chomp'")
-    body_q = kinematics.configuration({k: v for k, v in snapshot.joint_positions.items() if k in kinematics.joint_names})
+    known = kinematics.joint_names
+    body_q = kinematics.configuration({k: v for k, v in snapshot.joint_positions.items() if k in known})
     hand = grasp_hand(estimate.hinge_side, request.opening)
     side = hand.other if motion.uses_other_arm else hand
     chain = ArmChain(kinematics, side, body_q)
