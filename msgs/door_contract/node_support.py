@@ -10,7 +10,7 @@ import faulthandler
 import signal
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
-from typing import Any
+from typing import Any, Protocol
 
 import rclpy
 from rcl_interfaces.msg import FloatingPointRange, IntegerRange, ParameterDescriptor
@@ -156,6 +156,30 @@ def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
         for sig, handler in previous.items():
             signal.signal(sig, handler)
     return 0
+
+
+class NodeMain(Protocol):
+    """A node module's ``main``: what ``setup.py``'s console_scripts (``ros2 run``) call."""
+
+    def __call__(self, args: list[str] | None = None) -> int: ...
+
+
+def node_main(node_factory: Callable[[], Node], module_name: str) -> NodeMain:
+    """The entry point of a node module, written once: ``main = node_main(MyNode, __name__)``.
+
+    Returns ``main(args=None) -> int``, which runs the node with :func:`run_node`. When the
+    module itself is the program (``python -m pkg.my_node``: ``module_name == "__main__"``)
+    it runs the node at once and exits with its code, so no node module repeats the
+    ``if __name__ == "__main__"`` block. Call it last in the module (after the node class).
+    """
+
+    def main(args: list[str] | None = None) -> int:
+        return run_node(node_factory, args)
+
+    main.__doc__ = f"Run {getattr(node_factory, '__name__', 'the node')} until Ctrl-C or SIGTERM; the exit code."
+    if module_name == "__main__":
+        raise SystemExit(main())
+    return main
 
 
 def create_contract_publisher(node: Node, topic: TopicSpec) -> Any:

@@ -15,6 +15,8 @@ Each stopped execution reports STOPPED with the reason.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from nav_msgs.msg import Odometry, Path
@@ -38,12 +40,12 @@ from door_contract.node_support import (
     create_contract_publisher,
     create_contract_subscription,
     declare_parameters,
-    run_node,
+    node_main,
 )
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, encode
 from door_contract.stamps import stamp_ns, to_time_msg
 from door_contract.topics import Services, Topics
-from door_contract.vocabulary import DoorOpening, Foot, HingeSide, Side
+from door_contract.vocabulary import Foot, Side
 from door_robot.errors import RobotModelError
 from door_robot.meshes import MeshUris
 from door_sim_bridge.deadman import DeadMan
@@ -51,45 +53,12 @@ from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS, NODE_NAME
 from door_sim_bridge.robot_state_publication import RobotStatePublication
-from door_sim_bridge.world import CameraConfig, DoorConfig, DoorWorld, StanceConfig, WindConfig, WorldConfig
+from door_sim_bridge.schedule import Schedule
+from door_sim_bridge.world import DoorWorld
 from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT
+from door_sim_bridge.world_parameters import world_config
 
 STEPS_PER_TICK = 4
-
-
-COLOUR_PARAMETERS = ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour")
-"""Node parameters that are DoorConfig colour fields of the same name."""
-
-
-def world_config(p: dict) -> WorldConfig:
-    """The world of the node's parameters (SimulationError names a bad field)."""
-    camera_rate = p["camera_rate"] if p["camera_rate"] > 0 else 1.0
-    colours = {name: tuple(p[name]) for name in COLOUR_PARAMETERS}
-    return WorldConfig(
-        robot_profile=p["robot_profile"], physics_rate=p["physics_rate"], seed=p["seed"],
-        grasp_break_force=p["grasp_break_force"],
-        door=DoorConfig(opening=DoorOpening(p["door_opening"]), hinge_side=HingeSide(p["hinge_side"]),
-                        width=p["door_width"], handle_height=p["handle_height"],
-                        closer_stiffness=p["closer_stiffness"], wind=WindConfig(amplitude=p["wind_amplitude"]),
-                        **colours),
-        stance=StanceConfig(distance=p["stance_distance"], lateral_offset=p["stance_lateral"], yaw=p["stance_yaw"]),
-        camera=CameraConfig(width=p["camera_width"], height=p["camera_height"], frame_rate_hz=camera_rate,
-                            depth_noise_coefficient=p["depth_noise"], colour_noise_sigma=p["colour_noise"],
-                            light_direction=tuple(p["light_direction"])))
-
-
-class Schedule:
-    """Due times of a periodic publication in simulated time."""
-
-    def __init__(self, rate_hz: float) -> None:
-        self.period = 1.0 / rate_hz if rate_hz > 0 else float("inf")
-        self.next_time = 0.0
-
-    def due(self, now: float) -> bool:
-        if now + 1e-9 < self.next_time:
-            return False
-        self.next_time = max(self.next_time + self.period, now)
-        return True
 
 
 class SimBridgeNode(Node):
@@ -127,38 +96,35 @@ class SimBridgeNode(Node):
 
     # ------------------------------------------------------------------ commands
     def _on_trajectory(self, msg: JointTrajectory) -> None:
-        if not msg.points:
-            self._stop(ExecutionKind.TRAJECTORY, "a JointTrajectory without points (stop and hold)")
-            return
-        request_id = stamp_ns(msg.header.stamp)
-        try:
-            path = msg_to_joint_path(msg)
-        except ContractError as error:
-            self._report(ExecutionOutcome(ExecutionKind.TRAJECTORY, request_id, OutcomeStatus.REJECTED, str(error)))
-            return
-        try:
-            execution = TrajectoryExecution.from_joint_path(self.world, path)
-        except Exception as error:  # a bug must end in a failure outcome, not a dead node
-            self._internal_error(ExecutionKind.TRAJECTORY, request_id, error)
-            return
-        self._start(execution, ExecutionKind.TRAJECTORY, request_id)
+        self._on_command(ExecutionKind.TRAJECTORY, msg, not msg.points,
+                         "a JointTrajectory without points (stop and hold)", msg_to_joint_path,
+                         lambda path: TrajectoryExecution.from_joint_path(self.world, path))
 
     def _on_footsteps(self, msg: Path) -> None:
-        if not msg.poses:
-            self._stop(ExecutionKind.FOOTSTEPS, "an empty footstep plan (stop at the next stable stance)")
+        self._on_command(ExecutionKind.FOOTSTEPS, msg, not msg.poses,
+                         "an empty footstep plan (stop at the next stable stance)", path_to_footsteps,
+                         lambda steps: FootstepExecution(self.world, steps))
+
+    def _on_command(self, kind: ExecutionKind, msg: Any, empty: bool, stop_reason: str,
+                    convert: Callable[[Any], Any], build: Callable[[Any], Any]) -> None:
+        """An empty command stops the running execution of its kind; else the message is
+        converted (a ContractError rejects it, naming why) and its execution built and started
+        (any error there is a bug: a failure outcome, not a dead node)."""
+        if empty:
+            self._stop(kind, stop_reason)
             return
         request_id = stamp_ns(msg.header.stamp)
         try:
-            steps = path_to_footsteps(msg)
+            command = convert(msg)
         except ContractError as error:
-            self._report(ExecutionOutcome(ExecutionKind.FOOTSTEPS, request_id, OutcomeStatus.REJECTED, str(error)))
+            self._report(ExecutionOutcome(kind, request_id, OutcomeStatus.REJECTED, str(error)))
             return
         try:
-            execution = FootstepExecution(self.world, steps)
+            execution = build(command)
         except Exception as error:  # a bug must end in a failure outcome, not a dead node
-            self._internal_error(ExecutionKind.FOOTSTEPS, request_id, error)
+            self._internal_error(kind, request_id, error)
             return
-        self._start(execution, ExecutionKind.FOOTSTEPS, request_id)
+        self._start(execution, kind, request_id)
 
     def _stop(self, kind: ExecutionKind | None, why: str) -> None:
         """Stop the running execution if it is of ``kind`` (None: any); it reports STOPPED."""
@@ -274,9 +240,4 @@ class SimBridgeNode(Node):
         super().destroy_node()
 
 
-def main(args: list[str] | None = None) -> int:
-    return run_node(SimBridgeNode, args)
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+main = node_main(SimBridgeNode, __name__)

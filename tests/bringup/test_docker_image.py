@@ -12,7 +12,7 @@ import xml.etree.ElementTree as ElementTree
 import pytest
 
 PACKAGES = ("msgs", "sim_bridge", "src/door_robot", "src/door_detection", "src/footstep_planner", "src/door_trajopt",
-            "src/door_fsm", "src/door_bringup", "src/door_viz")
+            "src/door_fsm", "src/door_bringup", "src/door_viz", "src/door_evaluation")
 IMPORT_KEYS = {  # top-level module -> rosdep key (rosdistro's rosdep/python.yaml names)
     "numpy": "python3-numpy", "scipy": "python3-scipy", "cv2": "python3-opencv", "yaml": "python3-yaml",
     "matplotlib": "python3-matplotlib", "open3d": "python3-open3d-pip", "pybullet": "python3-pybullet-pip",

@@ -34,4 +34,4 @@ def test_layout_of_design_md(workspace, folder):
 def test_ros_ws_links_every_package(workspace):
     linked = {p.name for p in (workspace.root / "ros_ws" / "src").iterdir() if (p / "package.xml").is_file()}
     assert {"door_contract", "door_robot", "door_sim_bridge", "door_detection", "footstep_planner",
-            "door_trajopt", "door_fsm", "door_bringup"} <= linked
+            "door_trajopt", "door_fsm", "door_bringup", "door_viz", "door_evaluation"} <= linked

@@ -1,7 +1,7 @@
 """Rendered scenes shared by the door-detection tests (rendered once per session).
 
 ``sim_scene(distance, yaw, ...)`` renders the project's simulation core (``DoorWorld``,
-1024×544 head camera) through :mod:`door_detection.sim_scenes`; ``fixture_scene`` is this
+1024×544 head camera) through :mod:`door_evaluation.detection.sim_scenes`; ``fixture_scene`` is this
 folder's own minimal PyBullet world (:mod:`door_scene`), a second, independently built
 door (no frame, recessed leaf, a lever without a rose, other colours and intrinsics) so
 the detector is not tuned to one renderer.
@@ -14,7 +14,7 @@ from collections.abc import Callable
 import pytest
 
 from door_contract.vocabulary import Side
-from door_detection.sim_scenes import Scenario, SceneFrame, render_scenario
+from door_evaluation.detection.sim_scenes import Scenario, SceneFrame, render_scenario
 
 
 @pytest.fixture(scope="session")

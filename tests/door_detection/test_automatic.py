@@ -146,7 +146,7 @@ def test_a_faint_edge_seen_in_part_still_bounds_the_handle_search() -> None:
     """Table II start 209 (white leaf, frame and wall, σ = 1.9 cm at 2 m), the head turned
     0.6 rad right: the far jamb's faint line is found only above the handle; the handle is
     searched again on the rows the other edge spans, and found."""
-    from door_detection.trial_scenes import Appearance, TrialScene, world_config
+    from door_evaluation.detection.trial_scenes import Appearance, TrialScene, world_config
     from door_sim_bridge.world import DoorWorld
 
     white = (1.0, 1.0, 1.0)
@@ -166,7 +166,7 @@ def test_a_jamb_the_colour_of_the_leaf_is_cut_off_by_depth() -> None:
     """Table II start 31: a white leaf in a white frame 1 m away; one leaf edge does not show,
     so the pair is a leaf edge and the far side of a jamb (6.8 cm too wide). The jamb stands
     1 cm proud of the leaf: the edge moves inward past it."""
-    from door_detection.trial_scenes import Appearance, TrialScene, world_config
+    from door_evaluation.detection.trial_scenes import Appearance, TrialScene, world_config
     from door_sim_bridge.world import DoorWorld
 
     white = (1.0, 1.0, 1.0)

@@ -54,8 +54,8 @@ def test_a_scribble_grown_onto_the_jamb_keeps_the_lever_only() -> None:
     stereo noise σ = 4 cm (no telling the jamb's face from the leaf by depth). The scribble,
     grown by 4 px, covers the jamb's side face; only the part touching the drawn scribble is
     the handle (the jamb's column had moved the grasp point 3.2 cm towards the latch)."""
-    from door_detection.search_trial import operator_scribble
-    from door_detection.trial_scenes import Appearance, TrialScene, world_config
+    from door_evaluation.detection.search_trial import operator_scribble
+    from door_evaluation.detection.trial_scenes import Appearance, TrialScene, world_config
     from door_sim_bridge.world import DoorWorld
 
     look = Appearance((0.45, 0.52, 0.6), (0.92, 0.92, 0.88), (0.75, 0.75, 0.78), (0.7, 0.8, 0.65), (0.15, 0.15, 0.15),

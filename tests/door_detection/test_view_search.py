@@ -116,8 +116,8 @@ def test_a_door_edge_out_of_view_at_the_start_is_found_by_the_search(talos_kinem
     door whole; the search turns the head and confirms it within 2 cm / 2° in odom."""
     from door_detection.automatic import detect_automatic
     from door_detection.neck import neck_of
-    from door_detection.search_trial import run_search
-    from door_detection.trial_scenes import TrialScene, world_config
+    from door_evaluation.detection.search_trial import run_search
+    from door_evaluation.detection.trial_scenes import TrialScene, world_config
     from door_sim_bridge.world import DoorWorld
 
     neck = neck_of(talos_kinematics)
@@ -137,8 +137,8 @@ def test_a_door_edge_out_of_view_at_the_start_is_found_by_the_search(talos_kinem
 
 def test_a_door_in_view_is_confirmed_from_two_frames_half_a_second_apart(talos_kinematics) -> None:
     from door_detection.neck import neck_of
-    from door_detection.search_trial import SearchSettings, run_search
-    from door_detection.trial_scenes import TrialScene, world_config
+    from door_evaluation.detection.search_trial import SearchSettings, run_search
+    from door_evaluation.detection.trial_scenes import TrialScene, world_config
     from door_sim_bridge.world import DoorWorld
 
     with DoorWorld(world_config(TrialScene(2.5, 0.1, 0.1))) as world:
@@ -155,8 +155,8 @@ def test_without_a_pan_joint_the_body_turns_in_place(talos_kinematics) -> None:
     """A neck that only tilts (Atlas v4's): the search turns the body, left first, then right,
     and confirms the door 0.9 rad to the right."""
     from door_detection.neck import neck_of
-    from door_detection.search_trial import run_search
-    from door_detection.trial_scenes import TrialScene, world_config
+    from door_evaluation.detection.search_trial import run_search
+    from door_evaluation.detection.trial_scenes import TrialScene, world_config
     from door_sim_bridge.world import DoorWorld
 
     tilt_only = Neck(None, neck_of(talos_kinematics).tilt)

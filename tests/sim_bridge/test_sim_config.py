@@ -92,7 +92,7 @@ def test_door_geometry_follows_the_convention(opening, hinge_side):
 def test_the_bridge_maps_its_appearance_parameters_onto_the_world():
     from door_contract.parameters import validate_all
     from door_sim_bridge.parameters import BRIDGE_PARAMETERS
-    from door_sim_bridge.sim_bridge_node import world_config
+    from door_sim_bridge.world_parameters import world_config
 
     white = [1.0, 1.0, 1.0]
     config = world_config(validate_all(BRIDGE_PARAMETERS, {"door_colour": white, "wall_colour": white,

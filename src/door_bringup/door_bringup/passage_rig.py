@@ -32,8 +32,8 @@ from door_trajopt.library import Backend, MotionLibrary
 from door_trajopt.motions import Motion, MotionSetup, start_door_for, support_polygon
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.footstep import Pose2D
-from footstep_planner.footstep_planner_node import contract_footsteps
 from footstep_planner.legs import plan_legs
+from footstep_planner.proposal import contract_footsteps
 from footstep_planner.requests import (
     GoalSettings,
     WalkGoal,

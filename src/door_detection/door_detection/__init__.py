@@ -11,8 +11,8 @@ ROS-free core (no rclpy); the node ``door_detector_node`` wraps it.  Public API:
   ``transformed()``), :class:`~door_detection.estimate.DetectionOutcome`,
   :class:`~door_detection.options.DetectionOptions`.
 
-Scripts: ``python -m door_detection.evaluate_sim`` (Table II on the sim core),
-``python -m door_detection.evaluate_photos`` (2-D stage on real photos),
-``python -m door_detection.benchmark`` (time per frame vs the paper).
+Script: ``python -m door_detection.evaluate_photos`` (2-D stage on real photos). The
+evaluations on the simulator (Table II, the benchmark) are in ``door_evaluation.detection``:
+this package does not depend on the simulator.
 Importing the package imports nothing heavy.
 """

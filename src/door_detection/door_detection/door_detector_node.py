@@ -11,15 +11,14 @@ Bad frames (empty, wrong encoding, size mismatch, no valid depth, inconsistent
 CameraInfo) are logged and counted; nothing is published. A frame that never completes
 (e.g. no CameraInfo) is reported on /diagnostics with the stream it lacked. A scribble is
 checked on arrival (:mod:`door_detection.scribble`): a bad one is refused at once and
-automatic detection goes on.
+automatic detection goes on. Streams are matched by :mod:`door_detection.frame_sync`, the debug
+image drawn by :mod:`door_detection.overlay`.
 """
 
 from __future__ import annotations
 
 import time
-from collections import OrderedDict
 
-import cv2
 import numpy as np
 from geometry_msgs.msg import PolygonStamped, PoseStamped
 from rclpy.node import Node
@@ -38,7 +37,7 @@ from door_contract.node_support import (
     create_contract_publisher,
     create_contract_subscription,
     declare_parameters,
-    run_node,
+    node_main,
 )
 from door_contract.parameters import require_ordered
 from door_contract.payloads import encode
@@ -46,15 +45,16 @@ from door_contract.stamps import from_time_msg
 from door_contract.topics import Topics
 from door_detection.automatic import detect_automatic
 from door_detection.errors import DetectionError
+from door_detection.frame_sync import STREAMS, DroppedFrame, FrameSync
 from door_detection.markers import door_markers
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
+from door_detection.overlay import draw_estimate
 from door_detection.parameters import DETECTOR_PARAMETERS, NODE_NAME
 from door_detection.payload import contract_estimate
 from door_detection.scribble import scribble_problem
 from door_detection.voting import Voter
 
-STREAMS = ("color", "depth", "info", "pose")
 VOTE_PARAMETERS = ("vote_frames", "vote_min_agreeing", "vote_handle_confidence", "vote_normal_confidence_deg")
 """Node parameters that are the sequential vote's DetectionOptions fields of the same name."""
 
@@ -69,7 +69,7 @@ class DoorDetectorNode(Node):
             self.options = DetectionOptions(door_width_min=p["door_width_min"], door_width_max=p["door_width_max"],
                                             **{name: p[name] for name in VOTE_PARAMETERS})
         self.voter = Voter(self.options)
-        self.pending: OrderedDict[float, dict] = OrderedDict()  # stamp → {stream: message}
+        self.sync = FrameSync(p["sync_tolerance"])  # the streams matched into frames by stamp
         self.scribble: tuple[float, np.ndarray] | None = None  # (wall time, N×2 pixels)
         self.frames = self.rejected = self.incomplete = 0
         self.image_size: tuple[int, int] | None = None  # (width, height) of the last CameraInfo
@@ -102,28 +102,23 @@ class DoorDetectorNode(Node):
         self.heartbeat.update(Health.OK, note, frames=self.frames, rejected=self.rejected)
 
     def _on_stream(self, stream: str, msg: Image | CameraInfo | PoseStamped) -> None:
-        stamp = from_time_msg(msg.header.stamp)
-        key = next((k for k in self.pending if abs(k - stamp) <= self.parameters["sync_tolerance"]), stamp)
         if stream == "info":
             self.image_size = (int(msg.width), int(msg.height))
-        frame = self.pending.setdefault(key, {})
-        frame[stream] = msg
-        if len(frame) == len(STREAMS):
-            del self.pending[key]
+        complete, dropped = self.sync.add(stream, from_time_msg(msg.header.stamp), msg)
+        if complete is not None:
+            key, frame = complete
             try:
                 self._process(key, frame)
             except Exception as error:  # a bug drops this frame, it does not take the node down
                 self.get_logger().error(f"frame at {key:.2f} s crashed the detector: {error!r}")
                 self._reject(f"frame at {key:.2f} s: internal error: {error!r}")
-        while len(self.pending) > 20:  # drop incomplete old frames, saying what they lacked
-            old_stamp, parts = self.pending.popitem(last=False)
-            self._report_incomplete(old_stamp, parts)
+        for frame_dropped in dropped:  # incomplete old frames, saying what they lacked
+            self._report_incomplete(frame_dropped)
 
-    def _report_incomplete(self, stamp: float, parts: dict) -> None:
+    def _report_incomplete(self, dropped: DroppedFrame) -> None:
         self.incomplete += 1
-        missing = ", ".join({"info": "CameraInfo", "color": "colour image", "depth": "depth image",
-                             "pose": "camera pose"}[s] for s in STREAMS if s not in parts)
-        note = f"frame at {stamp:.2f} s dropped: no {missing} with its stamp"
+        missing = dropped.describe()
+        note = f"frame at {dropped.stamp:.2f} s dropped: no {missing} with its stamp"
         self.get_logger().warning(note, throttle_duration_sec=2.0)
         self.heartbeat.update(Health.WARN, note, frames=self.frames, rejected=self.rejected,
                               incomplete=self.incomplete, missing=missing)
@@ -178,19 +173,9 @@ class DoorDetectorNode(Node):
     def _publish_debug(self, color_msg: Image, rgb: np.ndarray, intrinsics, estimate) -> None:
         if self.debug_pub.get_subscription_count() == 0:
             return
-        overlay = np.ascontiguousarray(rgb.copy())
-        points = [estimate.handle_position] + ([] if np.isnan(estimate.corners).any() else list(estimate.corners))
-        pixels = intrinsics.project(np.array(points)).astype(int)
-        cv2.circle(overlay, tuple(int(v) for v in pixels[0]), 8, (255, 0, 0), 2)
-        if len(pixels) == 5:
-            cv2.polylines(overlay, [pixels[1:].reshape(-1, 1, 2)], True, (0, 255, 0), 2)
+        overlay = draw_estimate(rgb, intrinsics, estimate)
         self.debug_pub.publish(array_to_image(overlay, "rgb8", color_msg.header.frame_id,
                                               from_time_msg(color_msg.header.stamp)))
 
 
-def main(args: list[str] | None = None) -> int:
-    return run_node(DoorDetectorNode, args)
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+main = node_main(DoorDetectorNode, __name__)

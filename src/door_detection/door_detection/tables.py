@@ -4,8 +4,8 @@ An *outcome* is any object with ``scenario.distance`` (m), ``scenario.yaw`` (rad
 mode ("automatic", "operator"), an attribute of that name with ``success`` (bool),
 ``handle_error`` (m, NaN when nothing was detected), ``normal_error`` (deg), ``outcome``
 (the failure's name) and ``seconds`` (detection wall time per frame); a *grid* has
-``distances`` and ``yaws``. Both evaluations (single frames, :mod:`evaluate_sim`; the head
-search, :mod:`table_two`) print through these functions.
+``distances`` and ``yaws``. Both evaluations (single frames, :mod:`door_evaluation.detection.evaluate_sim`;
+the head search, :mod:`door_evaluation.detection.table_two`) print through these functions.
 """
 
 from __future__ import annotations

@@ -28,7 +28,7 @@ from door_contract.node_support import (
     create_contract_publisher,
     create_contract_subscription,
     declare_parameters,
-    run_node,
+    node_main,
 )
 from door_contract.payloads import ExecutionOutcome, OutcomeStatus, PlanningCancel, PlanningOutcome, decode, encode
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
@@ -239,9 +239,4 @@ class FsmSupervisorNode(Node):
         (self.footsteps_pub if isinstance(proposal.message, Path) else self.trajectory_pub).publish(proposal.message)
 
 
-def main(args: list[str] | None = None) -> int:
-    return run_node(FsmSupervisorNode, args)
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+main = node_main(FsmSupervisorNode, __name__)

@@ -49,12 +49,11 @@ from scipy.linalg import LinAlgError, cho_factor, cho_solve
 
 from door_trajopt.banded import KroneckerBandedCholesky, LowRankUpdatedMetric, MetricSolver
 from door_trajopt.evaluation import (
+    BackendSolver,
     PointModel,
     PointValues,
-    ProblemEvaluator,
     RunSummary,
     build_result,
-    guarded_solve,
 )
 from door_trajopt.problem import FloatArray, TrajectoryProblem
 from door_trajopt.result import OptimizationResult
@@ -173,29 +172,12 @@ def unit_rows(indices: IntArray, sign: float, n_variables: int) -> sp.csr_matrix
     return sp.csr_matrix((data, (rows, indices)), shape=(indices.size, n_variables))
 
 
-class ChompSolver:
+class ChompSolver(BackendSolver[ChompOptions]):
     """Constrained CHOMP for one problem; ``M`` is factorised in the constructor."""
 
     def __init__(self, problem: TrajectoryProblem, options: ChompOptions | None = None) -> None:
-        self._options = options if options is not None else ChompOptions()
-        self._evaluator = ProblemEvaluator.for_problem(problem)
+        super().__init__(problem, options if options is not None else ChompOptions())
         self._metric: KroneckerBandedCholesky = self._evaluator.objective.metric_factor()
-        self._lower = self._evaluator.lower_bounds()
-        self._upper = self._evaluator.upper_bounds()
-        self._pinned = self._evaluator.pinned_variables()
-
-    @property
-    def options(self) -> ChompOptions:
-        """The validated options."""
-        return self._options
-
-    def solve(self, initial_guess: FloatArray) -> OptimizationResult:
-        """Optimise from an ``(n, m)`` guess (projected onto the joint limits).
-
-        Never raises for a bad guess or NaN/inf callback values: those give
-        ``Outcome.INVALID_INPUT`` with the reason in ``message``.
-        """
-        return guarded_solve(self._evaluator.problem, initial_guess, self._run)
 
     def _run(self, guess: FloatArray, started: float) -> OptimizationResult:
         evaluator, options = self._evaluator, self._options

@@ -8,14 +8,16 @@ Also defines the exact :math:`\ell_1` merit function used for step acceptance
     \phi_\mu(\xi) = f(\xi) + \mu \Big( \sum_i |h_i(\xi)| + \sum_i \max(g_i(\xi), 0) \Big).
 
 Joint limits are never part of the merit: both backends keep every iterate
-inside the joint-limit box.
+inside the joint-limit box. :class:`BackendSolver` is what the two solvers share around their loops
+(options, evaluator, the guarded ``solve``).
 """
 
 from __future__ import annotations
 
+import abc
 import time
-from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Generic, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -25,6 +27,8 @@ from door_trajopt.constraints import ConstraintStack, NonFiniteValueError, Viola
 from door_trajopt.objective import Objective
 from door_trajopt.problem import ConstraintKind, FloatArray, TrajectoryProblem
 from door_trajopt.result import OptimizationResult, Outcome, invalid_guess_reason, invalid_input_result
+
+OptionsT = TypeVar("OptionsT")
 
 
 @dataclass(frozen=True)
@@ -162,18 +166,39 @@ def build_result(
     )
 
 
-def guarded_solve(problem: TrajectoryProblem, initial_guess: FloatArray,
-                  run: Callable[[FloatArray, float], OptimizationResult]) -> OptimizationResult:
-    """What both backends' ``solve`` share: check the guess, then ``run(guess, started)``.
+class BackendSolver(abc.ABC, Generic[OptionsT]):
+    """What both backends (:class:`~door_trajopt.sqp.SqpSolver`,
+    :class:`~door_trajopt.chomp.ChompSolver`) share: the validated options, the problem's
+    evaluator with its joint-limit box and pinned variables, and a :meth:`solve` that checks
+    the guess before the backend's own loop (:meth:`_run`) runs."""
 
-    Never raises for a bad guess or NaN/inf callback values: those give
-    ``Outcome.INVALID_INPUT`` with the reason in ``message``.
-    """
-    started = time.perf_counter()
-    reason = invalid_guess_reason(problem, initial_guess)
-    if reason is not None:
-        return invalid_input_result(initial_guess, reason, time.perf_counter() - started)
-    try:
-        return run(np.asarray(initial_guess, dtype=np.float64), started)
-    except NonFiniteValueError as error:
-        return invalid_input_result(initial_guess, str(error), time.perf_counter() - started)
+    def __init__(self, problem: TrajectoryProblem, options: OptionsT) -> None:
+        self._options = options
+        self._evaluator = ProblemEvaluator.for_problem(problem)
+        self._lower = self._evaluator.lower_bounds()
+        self._upper = self._evaluator.upper_bounds()
+        self._pinned = self._evaluator.pinned_variables()
+
+    @property
+    def options(self) -> OptionsT:
+        """The validated options."""
+        return self._options
+
+    def solve(self, initial_guess: FloatArray) -> OptimizationResult:
+        """Optimise from an ``(n, m)`` guess (projected onto the joint limits).
+
+        Never raises for a bad guess or NaN/inf callback values: those give
+        ``Outcome.INVALID_INPUT`` with the reason in ``message``.
+        """
+        started = time.perf_counter()
+        reason = invalid_guess_reason(self._evaluator.problem, initial_guess)
+        if reason is not None:
+            return invalid_input_result(initial_guess, reason, time.perf_counter() - started)
+        try:
+            return self._run(np.asarray(initial_guess, dtype=np.float64), started)
+        except NonFiniteValueError as error:
+            return invalid_input_result(initial_guess, str(error), time.perf_counter() - started)
+
+    @abc.abstractmethod
+    def _run(self, guess: FloatArray, started: float) -> OptimizationResult:
+        """The backend's loop from a checked guess; ``started`` is the ``perf_counter`` time."""

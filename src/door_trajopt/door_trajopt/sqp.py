@@ -52,12 +52,11 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from door_trajopt.evaluation import (
+    BackendSolver,
     PointModel,
     PointValues,
-    ProblemEvaluator,
     RunSummary,
     build_result,
-    guarded_solve,
 )
 from door_trajopt.lagrangian_curvature import BlockCurvature, block_pattern
 from door_trajopt.problem import FloatArray, TrajectoryProblem, TrajoptError
@@ -289,12 +288,11 @@ class StepOutcome:
     multipliers: FloatArray | None = None
 
 
-class SqpSolver:
+class SqpSolver(BackendSolver[SqpOptions]):
     """TrajOpt-style SQP for one problem; the OSQP workspace persists across solves."""
 
     def __init__(self, problem: TrajectoryProblem, options: SqpOptions | None = None) -> None:
-        self._options = options if options is not None else SqpOptions()
-        self._evaluator = ProblemEvaluator.for_problem(problem)
+        super().__init__(problem, options if options is not None else SqpOptions())
         self._quadratic_hessian = self._evaluator.objective.quadratic_hessian()
         self._curvature: BlockCurvature | None = None
         patterns = (
@@ -304,15 +302,7 @@ class SqpSolver:
         )
         # slack layout for the l1 mode and elastic re-solves; HARD solves without slacks
         self._layouts = {slacks: QpLayout.build(*patterns, slacks=slacks) for slacks in (True, False)}
-        self._lower = self._evaluator.lower_bounds()
-        self._upper = self._evaluator.upper_bounds()
-        self._pinned = self._evaluator.pinned_variables()
         self._qps: dict[bool, osqp.OSQP] = {}
-
-    @property
-    def options(self) -> SqpOptions:
-        """The validated options."""
-        return self._options
 
     def _hessian_pattern(self) -> sp.csr_matrix:
         residual = self._evaluator.objective.residual_pattern().astype(np.float64)
@@ -323,15 +313,7 @@ class SqpSolver:
             pattern = pattern + block_pattern(problem.n_free, problem.n_dof).astype(np.float64)
         return pattern.astype(bool).tocsr()
 
-    # --- public entry -------------------------------------------------------
-
-    def solve(self, initial_guess: FloatArray) -> OptimizationResult:
-        """Optimise from an ``(n, m)`` guess (projected onto the joint limits).
-
-        Never raises for a bad guess or NaN/inf callback values: those give
-        ``Outcome.INVALID_INPUT`` with the reason in ``message``.
-        """
-        return guarded_solve(self._evaluator.problem, initial_guess, self._run)
+    # --- the loop (BackendSolver.solve checks the guess, then calls it) -----
 
     def _run(self, guess: FloatArray, started: float) -> OptimizationResult:
         evaluator, options = self._evaluator, self._options

@@ -9,13 +9,11 @@ non-finite inputs and infeasible plans give a failure outcome naming the reason.
 request whose id can be read gets exactly one outcome; planning runs on a worker thread
 (the robot model is used there only), the newest request or a cancel on
 ``/trajectory_optimizer/cancel`` supersedes an older one (:mod:`door_contract.planner_service`).
+The library job of a request and the outcome's details are built by :mod:`door_trajopt.requests`.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-import numpy as np
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
@@ -23,7 +21,6 @@ from std_msgs.msg import String
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.joint_state import joint_state_to_positions
 from door_contract.converters.trajectory import joint_path_to_msg
-from door_contract.door_estimates import door_estimate_problem
 from door_contract.errors import ContractError
 from door_contract.node_support import (
     Heartbeat,
@@ -31,7 +28,7 @@ from door_contract.node_support import (
     create_contract_publisher,
     create_contract_subscription,
     declare_parameters,
-    run_node,
+    node_main,
 )
 from door_contract.payloads import (
     DoorEstimate,
@@ -46,41 +43,18 @@ from door_contract.planner_inputs import PlannerInputs
 from door_contract.planner_service import Finished
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
 from door_contract.topics import Topics
-from door_contract.vocabulary import DoorOpening, grasp_hand
 from door_robot.errors import RobotModelError
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
-from door_trajopt.chain import ArmChain
-from door_trajopt.door_model import door_model_from_estimate
-from door_trajopt.library import Backend, MotionLibrary, MotionPlan
-from door_trajopt.motions import (
-    DoorStateOutOfRange,
-    Motion,
-    MotionOptions,
-    MotionSetup,
-    start_door_for,
-    support_polygon,
-)
+from door_trajopt.library import MotionLibrary, MotionPlan
+from door_trajopt.motions import DoorStateOutOfRange, MotionOptions
 from door_trajopt.parameters import NODE_NAME, OPTIMIZER_PARAMETERS
 from door_trajopt.problem import TrajoptError
-
-
-class PlanningRefused(Exception):
-    """A request that cannot be planned (bad or missing input); the message says why."""
-
+from door_trajopt.requests import PlanningRefused, Snapshot, motion_job, outcome_details
 
 BAD_INPUT = (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)
-"""What a request's planning raises for bad input (answered REJECTED); anything else,
-:class:`~door_trajopt.problem.TrajoptError` of a built problem included, is a bug (FAILURE)."""
-
-
-@dataclass(frozen=True)
-class Snapshot:
-    """The inputs a request is planned from, taken when it arrives (the measured state)."""
-
-    joint_positions: dict[str, float] | None
-    base_pose: np.ndarray | None
-    estimate: DoorEstimate | None
+"""What a request's planning raises for bad input (answered REJECTED); anything else (any other
+:class:`~door_trajopt.problem.TrajoptError`, of a built problem, included) is a bug (FAILURE)."""
 
 
 class TrajectoryOptimizerNode(Node):
@@ -144,48 +118,15 @@ class TrajectoryOptimizerNode(Node):
 
     def _plan(self, request: MotionRequest, snapshot: Snapshot) -> MotionPlan:
         """On the worker thread (the only user of the robot model and the library)."""
-        motion = next((m for m in Motion if m.value == request.motion), None)
-        if motion is None:
-            raise PlanningRefused(f"unknown motion {request.motion!r}; known: " + ", ".join(m.value for m in Motion))
-        estimate = snapshot.estimate
-        if estimate is None:
-            raise PlanningRefused("no door estimate yet" if request.door_stamp < 0 else
-                                  f"door estimate of stamp {request.door_stamp:.3f} s was not received")
-        if door_estimate_problem(estimate):
-            raise PlanningRefused(door_estimate_problem(estimate))
-        if snapshot.joint_positions is None or snapshot.base_pose is None:
-            raise PlanningRefused("no valid joint states / odometry yet")
-        backend = next((b for b in Backend if b.value == (request.backend or self.parameters["backend"])), None)
-        if backend is None:
-            raise PlanningRefused(f"unknown backend {request.backend!r}; use 'sqp' or 'chomp'")
-        body_q = self.kinematics.configuration(
-            {k: v for k, v in snapshot.joint_positions.items() if k in self.kinematics.joint_names})
-        hand = grasp_hand(estimate.hinge_side, request.opening)
-        side = hand.other if motion.uses_other_arm else hand
-        chain = ArmChain(self.kinematics, side, body_q)
-        door = door_model_from_estimate(estimate, np.linalg.inv(snapshot.base_pose),
-                                        push=request.opening is DoorOpening.PUSH, lever_radius=self.lever_radius)
-        setup = MotionSetup(chain, door, estimate.width, support_polygon(chain),
-                            start_door_for(motion, request.door_angle, self.library.options))
-        self.get_logger().info(f"planning {motion.value} with the {side.value} arm ({backend.value})")
-        return self.library.plan(motion, setup, chain.chain_of(body_q), backend, variant=request.request_id,
+        job = motion_job(request, snapshot, self.kinematics, self.library.options, self.parameters["backend"],
+                         self.lever_radius)
+        self.get_logger().info(f"planning {job.motion.value} with the {job.side.value} arm ({job.backend.value})")
+        return self.library.plan(job.motion, job.setup, job.start, job.backend, variant=request.request_id,
                                  attempt=request.attempt)
 
     def _answer(self, request_id: int, motion: str, backend: str, status: OutcomeStatus, reason: str,
                 plan: MotionPlan | None = None, proposal_stamp_ns: int = -1) -> None:
-        details = {"stamp_ns": proposal_stamp_ns}
-        if plan is not None:
-            result = plan.result
-            details.update(cost=round(result.cost, 6), max_violation=float(f"{result.max_violation:.3g}"),
-                           iterations=result.iterations, attempts=plan.attempts,
-                           door_angle=round(plan.final_door[0], 5),
-                           duration_s=round(float(plan.path.times[-1]), 3) if plan.path else 0.0,
-                           backend=backend or self.parameters["backend"])
-            if plan.path is not None:  # for the report's before/after plot ([Zucker 2013] Fig. 4)
-                k = len(plan.path.joint_names)
-                details.update(joint_names=list(plan.path.joint_names),
-                               initial_guess=np.round(plan.initial_guess[:, :k], 4).tolist(),
-                               optimised=np.round(plan.result.trajectory[:, :k], 4).tolist())
+        details = outcome_details(plan, backend or self.parameters["backend"], proposal_stamp_ns)
         outcome = PlanningOutcome(request_id, status, reason, plan.planning_time_s if plan else 0.0,
                                   without_non_finite(details))  # a diverged plan's NaN cost must not stop it
         self.outcome_pub.publish(String(data=encode(outcome)))
@@ -205,9 +146,4 @@ class TrajectoryOptimizerNode(Node):
         super().destroy_node()
 
 
-def main(args: list[str] | None = None) -> int:
-    return run_node(TrajectoryOptimizerNode, args)
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+main = node_main(TrajectoryOptimizerNode, __name__)

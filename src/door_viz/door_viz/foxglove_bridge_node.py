@@ -20,7 +20,7 @@ from std_msgs.msg import String
 
 from door_contract.converters.diagnostics import Health
 from door_contract.errors import ParameterRangeError
-from door_contract.node_support import Heartbeat, declare_parameters, run_node
+from door_contract.node_support import Heartbeat, declare_parameters, node_main
 from door_contract.qos import matching_subscription
 from door_contract.topics import Topics, interface_class
 from door_robot.errors import RobotModelError
@@ -164,9 +164,4 @@ class FoxgloveBridgeNode(Node):
         super().destroy_node()
 
 
-def main(args: list[str] | None = None) -> int:
-    return run_node(FoxgloveBridgeNode, args)
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+main = node_main(FoxgloveBridgeNode, __name__)

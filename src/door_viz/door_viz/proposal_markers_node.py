@@ -31,7 +31,7 @@ from door_contract.node_support import (
     create_contract_publisher,
     create_contract_subscription,
     declare_parameters,
-    run_node,
+    node_main,
 )
 from door_contract.payloads import DoorEstimate, FootstepRequest, MotionRequest, decode
 from door_contract.topics import Topics
@@ -130,9 +130,4 @@ class ProposalMarkersNode(Node):
         return True
 
 
-def main(args: list[str] | None = None) -> int:
-    return run_node(ProposalMarkersNode, args)
-
-
-if __name__ == "__main__":
-    raise SystemExit(main())
+main = node_main(ProposalMarkersNode, __name__)

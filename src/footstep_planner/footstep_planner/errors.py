@@ -24,3 +24,8 @@ class FootstepPlannerError(Exception):
     def __init__(self, message: str, field: str = "") -> None:
         super().__init__(message)
         self.field = field
+
+
+class RequestRefused(FootstepPlannerError):
+    """A request that cannot be planned from the node's inputs (no odometry yet, no usable
+    door estimate): answered REJECTED with this reason."""

@@ -15,19 +15,26 @@ from typing import Any
 
 import numpy as np
 
-from door_contract.payloads import DoorEstimate
+from door_contract.converters.footsteps import FootPlacement
+from door_contract.door_estimates import door_estimate_problem
+from door_contract.geometry import yaw_of
+from door_contract.payloads import DoorEstimate, FootstepRequest
 from door_contract.vocabulary import DoorOpening, Foot, WalkGoal
+from footstep_planner.astar import FootstepPlanner
 from footstep_planner.door import DoorGeometry, wall_obstacles
+from footstep_planner.errors import RequestRefused
 from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.goals import pull_passage_waypoints, stand_pose_for_opening
-from footstep_planner.legs import Leg
+from footstep_planner.legs import Leg, plan_legs
 from footstep_planner.narrow import passage_legs
 from footstep_planner.options import FootstepPlannerOptions
+from footstep_planner.plan import PlanResult
 from footstep_planner.robot_limits import options_for_walking, planner_options
 from footstep_planner.world import World
 
-__all__ = ["GoalSettings", "WalkProblem", "door_geometry_from_estimate", "options_for_problem",
-           "options_for_walking", "passage_angle", "planner_options", "stand_pose", "start_stance", "walk_problem"]
+__all__ = ["GoalSettings", "Snapshot", "WalkProblem", "door_geometry_from_estimate", "options_for_problem",
+           "options_for_walking", "passage_angle", "planner_options", "problem_for_request", "stand_pose",
+           "start_stance", "walk_problem", "WalkPlanners"]
 
 PLANNED_STANCE_TOLERANCE = (0.03, 0.05)
 """The base within (m, rad) of where the last plan left it: that plan was walked."""
@@ -166,3 +173,63 @@ def options_for_problem(problem: WalkProblem, goal: WalkGoal,
     if goal is WalkGoal.STAND or len(problem.legs) > 1:
         return replace(options, snap_to_goal=True)
     return options
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """The inputs a request is planned from, taken when it arrives (the measured state):
+    the base pose (4×4 in ``odom``), the measured soles (left, right), the door estimate the
+    request names, and where the last plan left the feet."""
+
+    base_pose: np.ndarray | None
+    feet: list[FootPlacement] | None
+    estimate: DoorEstimate | None
+    planned_stance: Stance | None
+
+
+def problem_for_request(request: FootstepRequest, snapshot: Snapshot, options: FootstepPlannerOptions,
+                        settings: GoalSettings) -> WalkProblem:
+    """Start stance, the legs to walk in order, and the obstacles of ``request``, from the
+    snapshot. Raises :class:`~footstep_planner.errors.RequestRefused` without odometry or
+    without a usable door estimate (its reason names what is missing)."""
+    if snapshot.base_pose is None:
+        raise RequestRefused("no valid odometry yet")
+    estimate = snapshot.estimate
+    if estimate is None:
+        raise RequestRefused("no door estimate yet" if request.door_stamp < 0 else
+                             f"door estimate of stamp {request.door_stamp:.3f} s was not received")
+    problem = door_estimate_problem(estimate)
+    if problem:
+        raise RequestRefused(problem)
+    pose = snapshot.base_pose
+    body = Pose2D(float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
+    feet = None if snapshot.feet is None else _sole_poses(snapshot.feet)
+    start = start_stance(body, options.nominal_foot_separation, feet, snapshot.planned_stance)
+    door = door_geometry_from_estimate(estimate, request.opening, request.door_angle, settings.handle_standoff)
+    return walk_problem(request.goal, door, start, options, settings)
+
+
+def _sole_poses(feet: list[FootPlacement]) -> tuple[Pose2D, Pose2D]:
+    """The measured (left, right) sole poses."""
+    left, right = (Pose2D(f.x, f.y, f.yaw) for f in feet)
+    return left, right
+
+
+class WalkPlanners:
+    """Plans a :class:`WalkProblem`: one :class:`~footstep_planner.astar.FootstepPlanner` per
+    set of options (its tables are built once), given the problem's world for each plan."""
+
+    def __init__(self) -> None:
+        self._planners: dict[FootstepPlannerOptions, FootstepPlanner] = {}
+
+    def plan(self, problem: WalkProblem, options: FootstepPlannerOptions, attempt: int = 0) -> tuple[PlanResult, str]:
+        """The legs in order (:func:`~footstep_planner.legs.plan_legs`); a single leg from a
+        start inside the safety margins once more without them
+        (:meth:`~footstep_planner.astar.FootstepPlanner.plan_from_within_margins`). Returns the
+        result and, when the margins were dropped, why (else "")."""
+        if options not in self._planners:
+            self._planners[options] = FootstepPlanner(problem.world, options)
+        planner = self._planners[options].with_world(problem.world)
+        if len(problem.legs) > 1:
+            return plan_legs(planner, problem.start, problem.legs, attempt), ""
+        return planner.plan_from_within_margins(problem.start, problem.legs[0].goal, attempt)

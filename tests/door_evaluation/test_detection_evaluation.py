@@ -1,36 +1,21 @@
-"""The evaluation scripts and the benchmark run and return sane numbers (no timing asserts)."""
+"""The detector's evaluations on the simulator and its benchmark run and return sane numbers
+(no timing asserts)."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
-import pytest
 
-from door_detection import benchmark, evaluate_photos, evaluate_sim
+from door_detection.neck import neck_of
 from door_detection.options import DetectionOptions
-from door_detection.progress import ProgressBar
-
-
-def test_photo_evaluation_on_three_labelled_photos(shared_data) -> None:
-    images = [image for image in evaluate_photos.load_dataset(shared_data / "doors" / "detectdoor")
-              if image.of_class(evaluate_photos.DOOR)][:3]
-    assert len(images) == 3
-    report = evaluate_photos.evaluate(images, progress=False)
-    assert report.images == 3 and report.doors >= 3 and report.handles >= 3
-    for value in (report.door_found, report.door_top1_precision, report.handle_found,
-                  report.handle_centre_hit):
-        assert 0.0 <= value <= 1.0
-    assert math.isnan(report.door_false_detections)          # no image without doors among the 3
-    assert "doors found" in report.text()
-
-
-def test_photo_labels_are_parsed_in_pixels(shared_data) -> None:
-    dataset = evaluate_photos.load_dataset(shared_data / "doors" / "detectdoor")
-    images = {image.path.stem: image for image in dataset}
-    door = images["000c9e454bbf6d0d"].of_class(evaluate_photos.DOOR)[0]   # 678×1024, cx 0.477
-    assert door[0] == pytest.approx((0.477344 - 0.479688 / 2) * 678, abs=0.5)
-    assert images["00eb261110ac46c5"].boxes == ()                         # a negative
+from door_evaluation.detection import benchmark, evaluate_sim, table_two
+from door_evaluation.detection.search_trial import SearchOutcome
+from door_evaluation.detection.sim_scenes import Scenario, render_scenario
+from door_evaluation.detection.table_two import TrialResult, failed_starts, judge
+from door_evaluation.detection.trial_scenes import TrialScene
+from door_robot.kinematics import RobotKinematics
+from door_robot.profile import load_profile
 
 
 def test_sim_evaluation_on_a_tiny_grid(capsys) -> None:
@@ -42,30 +27,15 @@ def test_sim_evaluation_on_a_tiny_grid(capsys) -> None:
     assert "2.0 m |" in text and "1/1" in text and "Table II" in text
 
 
-def test_benchmark_report(straight_on) -> None:
+def test_benchmark_report() -> None:
+    straight_on = render_scenario(Scenario(distance=2.0, yaw=0.0))
     automatic, operator = benchmark.benchmark_scene(straight_on, DetectionOptions(), repeats=2)
     assert automatic.success and operator.success and len(automatic.seconds) == 2
     text = benchmark.report([(automatic, operator)])
     assert "paper   2050 ms/frame" in text and "faster" in text
 
 
-def test_progress_bar_writes_to_its_stream() -> None:
-    import io
-
-    stream = io.StringIO()
-    bar = ProgressBar(2, stream=stream)
-    bar.advance("one")
-    bar.advance("two")
-    bar.close()
-    assert "2/2" in stream.getvalue() and stream.getvalue().endswith("\n")
-
-
 def test_table_two_with_the_head_search_on_one_cell() -> None:
-    from door_detection import table_two
-    from door_detection.neck import neck_of
-    from door_robot.kinematics import RobotKinematics
-    from door_robot.profile import load_profile
-
     grid = table_two.TableTwoGrid(distances=(3.0,), yaws=(0.6,), trials=1, seed=3)
     results = table_two.run_table(grid, neck_of(RobotKinematics(load_profile("talos"))), progress=False)
     assert len(results) == 1 and results[0].scenario.yaw == 0.6
@@ -77,10 +47,6 @@ def test_table_two_with_the_head_search_on_one_cell() -> None:
 
 
 def test_a_search_without_a_door_is_judged_a_failure() -> None:
-    from door_detection.search_trial import SearchOutcome
-    from door_detection.table_two import TrialResult, failed_starts, judge
-    from door_detection.trial_scenes import TrialScene
-
     result = judge(SearchOutcome(None, 12, 6, 9.0, (0.02,) * 12), np.zeros(3), np.array([-1.0, 0, 0]), 0.9)
     assert not result.success and result.outcome == "no door confirmed" and math.isnan(result.handle_error)
     assert (result.frames, result.views) == (12, 6)
@@ -89,11 +55,6 @@ def test_a_search_without_a_door_is_judged_a_failure() -> None:
 
 
 def test_table_two_in_two_processes_gives_the_same_trials_in_the_same_order() -> None:
-    from door_detection import table_two
-    from door_detection.neck import neck_of
-    from door_robot.kinematics import RobotKinematics
-    from door_robot.profile import load_profile
-
     neck = neck_of(RobotKinematics(load_profile("talos")))
     grid = table_two.TableTwoGrid(distances=(2.0,), yaws=(-0.2,), trials=2, seed=5)
     alone = table_two.run_table(grid, neck, progress=False)

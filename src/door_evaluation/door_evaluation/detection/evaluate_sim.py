@@ -1,14 +1,14 @@
 """Evaluation on rendered scenes of the simulation core, in the form of the paper's Table II.
 
-``python -m door_detection.evaluate_sim [--trials N] [--quick]`` — **Table II with the head
-search** (:mod:`~door_detection.table_two`): randomised starts over 1–4 m × ±0.6 rad as the
+``python -m door_evaluation.detection.evaluate_sim [--trials N] [--quick]`` — **Table II with the head
+search** (:mod:`~door_evaluation.detection.table_two`): randomised starts over 1–4 m × ±0.6 rad as the
 graph's robot has them (640×480 head camera, door partly out of view at the wider angles),
 the head and body search, the sequential vote in odom; automatic and operator-aided.
 
-``python -m door_detection.evaluate_sim --single-frame [--quick] [--colours all] [--noise 0 0.003]``
+``python -m door_evaluation.detection.evaluate_sim --single-frame [--quick] [--colours all] [--noise 0 0.003]``
 — single frames: for every (distance, viewing angle, depth noise) cell — and door/handle
 colours and hinge side cycled over the cells, or all colour pairs with ``--colours all`` — a
-:class:`~door_detection.sim_scenes.Scenario` (the robot facing the door centre, 1024×544
+:class:`~door_evaluation.detection.sim_scenes.Scenario` (the robot facing the door centre, 1024×544
 head camera aimed at the handle) is rendered once and both detectors run on the frame:
 
 * automatic (Sec. III-A), no prior knowledge;
@@ -39,8 +39,8 @@ from door_detection.estimate import DetectionResult
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
-from door_detection.sim_scenes import DOOR_COLOURS, HANDLE_COLOURS, Scenario, SceneFrame, render_scenario
 from door_detection.tables import HANDLE_TOLERANCE, MODES, NORMAL_TOLERANCE_DEG, paper_table, success_table, summary
+from door_evaluation.detection.sim_scenes import DOOR_COLOURS, HANDLE_COLOURS, Scenario, SceneFrame, render_scenario
 
 
 @dataclass(frozen=True)
@@ -157,8 +157,8 @@ def _arguments(argv: Sequence[str] | None) -> argparse.Namespace:
 
 def _table_two(args: argparse.Namespace) -> str:
     from door_detection.neck import neck_of
-    from door_detection.search_trial import SearchSettings
-    from door_detection.table_two import TableTwoGrid, report, run_table
+    from door_evaluation.detection.search_trial import SearchSettings
+    from door_evaluation.detection.table_two import TableTwoGrid, report, run_table
     from door_robot.kinematics import RobotKinematics
     from door_robot.profile import load_profile
 

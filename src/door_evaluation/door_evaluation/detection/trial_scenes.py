@@ -96,7 +96,7 @@ def random_scene(distance: float, yaw: float, rng: np.random.Generator, seed: in
 def world_config(scene: TrialScene) -> object:
     """The sim core's WorldConfig of a scene: the sim bridge's camera and robot visuals, on the
     kinematic robot (:class:`~door_sim_bridge.world.config.RobotMode`): the search turns the body
-    in place by placing the base (:mod:`door_detection.search_trial`), which the physical robot
+    in place by placing the base (:mod:`door_evaluation.detection.search_trial`), which the physical robot
     refuses, and only the camera's view is measured."""
     from door_sim_bridge.world import CameraConfig, DoorConfig, RobotMode, StanceConfig, WorldConfig
 

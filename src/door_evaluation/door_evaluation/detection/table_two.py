@@ -25,7 +25,6 @@ import numpy as np
 from door_detection.estimate import DetectedDoor, DetectionMode
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
-from door_detection.search_trial import SearchOutcome, SearchSettings, run_search
 from door_detection.tables import (
     CELL_TARGET,
     HANDLE_TOLERANCE,
@@ -37,8 +36,9 @@ from door_detection.tables import (
     summary,
     worst_cell,
 )
-from door_detection.trial_scenes import TrialScene, random_scene, world_config
 from door_detection.view_search import Neck, ViewSearchOptions
+from door_evaluation.detection.search_trial import SearchOutcome, SearchSettings, run_search
+from door_evaluation.detection.trial_scenes import TrialScene, random_scene, world_config
 
 
 @dataclass(frozen=True)

@@ -1,6 +1,6 @@
 """Time per 1024×544 frame of both detectors on rendered sim-core scenes, against the paper.
 
-``python -m door_detection.benchmark [--repeats N]``
+``python -m door_evaluation.detection.benchmark [--repeats N]``
 
 [Banerjee 2015] Table I: door detection took 20.5 s (pull door) / 19.6 s (push door) for the
 10-frame vote, i.e. ~2 s per frame; the project's target (DESIGN.md) is ≤ 50 ms per
@@ -25,7 +25,7 @@ from door_detection.estimate import DetectionResult
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
-from door_detection.sim_scenes import Scenario, SceneFrame, render_scenario
+from door_evaluation.detection.sim_scenes import Scenario, SceneFrame, render_scenario
 
 PAPER_SECONDS_PER_VOTE = 20.5
 """[Banerjee 2015] Table I, pull door: detection time for the 10-frame vote (s)."""

@@ -11,7 +11,7 @@ together (:class:`~door_detection.voting.Voter`), whatever view it came from.
 
 Operator-aided runs scribble once per settled view, when the whole lever projects into the
 image (an operator marks what they see): the projected lever's outline with ±2 px noise
-(:func:`~door_detection.sim_scenes.synthetic_scribble`), the hinge side given.
+(:func:`~door_evaluation.detection.sim_scenes.synthetic_scribble`), the hinge side given.
 """
 
 from __future__ import annotations
@@ -25,9 +25,9 @@ from door_detection.automatic import detect_automatic
 from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
-from door_detection.sim_scenes import lever_corners, synthetic_scribble
 from door_detection.view_search import Neck, SearchStep, View, ViewSearch, ViewSearchOptions, plan_views
 from door_detection.voting import Voter
+from door_evaluation.detection.sim_scenes import lever_corners, synthetic_scribble
 
 
 @dataclass(frozen=True)

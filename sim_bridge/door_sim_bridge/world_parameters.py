@@ -1,0 +1,30 @@
+"""The simulated world of the sim bridge's node parameters, without ROS."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from door_contract.vocabulary import DoorOpening, HingeSide
+from door_sim_bridge.world import CameraConfig, DoorConfig, StanceConfig, WindConfig, WorldConfig
+
+__all__ = ["COLOUR_PARAMETERS", "world_config"]
+
+COLOUR_PARAMETERS = ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour")
+"""Node parameters that are DoorConfig colour fields of the same name."""
+
+
+def world_config(p: dict[str, Any]) -> WorldConfig:
+    """The world of the node's parameters (SimulationError names a bad field)."""
+    camera_rate = p["camera_rate"] if p["camera_rate"] > 0 else 1.0
+    colours = {name: tuple(p[name]) for name in COLOUR_PARAMETERS}
+    return WorldConfig(
+        robot_profile=p["robot_profile"], physics_rate=p["physics_rate"], seed=p["seed"],
+        grasp_break_force=p["grasp_break_force"],
+        door=DoorConfig(opening=DoorOpening(p["door_opening"]), hinge_side=HingeSide(p["hinge_side"]),
+                        width=p["door_width"], handle_height=p["handle_height"],
+                        closer_stiffness=p["closer_stiffness"], wind=WindConfig(amplitude=p["wind_amplitude"]),
+                        **colours),
+        stance=StanceConfig(distance=p["stance_distance"], lateral_offset=p["stance_lateral"], yaw=p["stance_yaw"]),
+        camera=CameraConfig(width=p["camera_width"], height=p["camera_height"], frame_rate_hz=camera_rate,
+                            depth_noise_coefficient=p["depth_noise"], colour_noise_sigma=p["colour_noise"],
+                            light_direction=tuple(p["light_direction"])))

@@ -1,0 +1,84 @@
+"""From a motion request to a library job without ROS: refusals name what is wrong or missing
+(and are the only TrajoptError answered as bad input), the arm follows from hinge and opening,
+and a plan's outcome details carry what the FSM and the report read."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from door_scenes import talos_kinematics
+
+from door_contract.payloads import DoorEstimate, MotionRequest
+from door_contract.vocabulary import DoorOpening, HingeSide, Side
+from door_trajopt.library import Backend, MotionLibrary
+from door_trajopt.motions import Motion
+from door_trajopt.problem import TrajoptError
+from door_trajopt.requests import PlanningRefused, Snapshot, motion_job, outcome_details
+
+# base at (-0.5, -0.12) facing +x, door plane x = 0, left hinge: the footstep planner's stand pose
+ESTIMATE = DoorEstimate(1.0, "odom", (-0.06, -0.321, 0.91), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
+                        ((0.0, 0.457, 0.01), (0.0, -0.457, 0.01), (0.0, -0.457, 2.09), (0.0, 0.457, 2.09)),
+                        1.0, 10, "automatic")
+BASE = np.eye(4)
+BASE[:3, 3] = -0.5, -0.12, 1.0
+
+
+@pytest.fixture(scope="module")
+def kinematics():
+    return talos_kinematics()
+
+
+def _snapshot(kinematics, estimate=ESTIMATE, joints=True, base=True) -> Snapshot:
+    positions = {name: 0.0 for name in kinematics.joint_names} if joints else None
+    return Snapshot(positions, BASE.copy() if base else None, estimate)
+
+
+def _job(kinematics, request, snapshot):
+    return motion_job(request, snapshot, kinematics, MotionLibrary().options, "sqp", 0.1)
+
+
+@pytest.mark.parametrize("request_, snapshot_args, reason", [
+    (MotionRequest(1, "dance", DoorOpening.PUSH), {}, "unknown motion 'dance'; known: approach_handle"),
+    (MotionRequest(2, "approach_handle", DoorOpening.PUSH), {"estimate": None}, "no door estimate yet"),
+    (MotionRequest(3, "approach_handle", DoorOpening.PUSH, door_stamp=2.5), {"estimate": None},
+     "door estimate of stamp 2.500 s was not received"),
+    (MotionRequest(4, "approach_handle", DoorOpening.PUSH), {"joints": False}, "no valid joint states / odometry yet"),
+    (MotionRequest(5, "approach_handle", DoorOpening.PUSH), {"base": False}, "no valid joint states / odometry yet"),
+    (MotionRequest(6, "approach_handle", DoorOpening.PUSH, backend="rrt"), {}, "unknown backend 'rrt'"),
+])
+def test_a_request_that_cannot_be_planned_is_refused_with_the_reason(kinematics, request_, snapshot_args, reason):
+    with pytest.raises(PlanningRefused, match=reason) as refused:
+        _job(kinematics, request_, _snapshot(kinematics, **snapshot_args))
+    assert isinstance(refused.value, TrajoptError) and not isinstance(refused.value, ValueError)
+
+
+def test_an_estimate_with_a_bad_normal_is_refused(kinematics):
+    tilted = DoorEstimate(**{**ESTIMATE.__dict__, "normal": (0.0, 0.0, 1.0)})
+    with pytest.raises(PlanningRefused, match="not horizontal"):
+        _job(kinematics, MotionRequest(7, "approach_handle", DoorOpening.PUSH), _snapshot(kinematics, tilted))
+
+
+def test_the_job_takes_the_grasping_arm_and_the_default_backend(kinematics):
+    job = _job(kinematics, MotionRequest(8, "approach_handle", DoorOpening.PUSH), _snapshot(kinematics))
+    assert job.motion is Motion.APPROACH_HANDLE and job.backend is Backend.SQP
+    assert job.side is Side.RIGHT                                  # left hinge, push: the right hand
+    assert job.start.shape == (len(job.setup.chain.joint_names),) and np.allclose(job.start, 0.0)
+    chomp = _job(kinematics, MotionRequest(9, "approach_handle", DoorOpening.PUSH, backend="chomp"),
+                 _snapshot(kinematics))
+    assert chomp.backend is Backend.CHOMP
+
+
+def test_outcome_details_without_a_plan_carry_the_stamp_only():
+    assert outcome_details(None, "sqp", 42) == {"stamp_ns": 42}
+
+
+@pytest.mark.slow
+def test_outcome_details_of_a_plan_carry_what_the_fsm_and_the_report_read(kinematics):
+    job = _job(kinematics, MotionRequest(10, "approach_handle", DoorOpening.PUSH), _snapshot(kinematics))
+    plan = MotionLibrary().plan(job.motion, job.setup, job.start, job.backend)
+    details = outcome_details(plan, "sqp", 7)
+    assert details["stamp_ns"] == 7 and details["backend"] == "sqp" and details["attempts"] == plan.attempts
+    assert {"cost", "max_violation", "iterations", "door_angle", "duration_s"} <= set(details)
+    if plan.path is not None:
+        k = len(details["joint_names"])
+        assert np.asarray(details["optimised"]).shape[1] == k == np.asarray(details["initial_guess"]).shape[1]
