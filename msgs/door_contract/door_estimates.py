@@ -36,6 +36,16 @@ def door_estimate_problem(estimate: DoorEstimate) -> str | None:
     return None
 
 
+def requested_estimate_problem(estimate: DoorEstimate | None, door_stamp: float) -> str | None:
+    """Why a planner cannot plan a request with the estimate it picked for ``door_stamp`` (s;
+    < 0: the latest), or None: none has arrived, the one asked for was not received, or it is
+    unusable (:func:`door_estimate_problem`)."""
+    if estimate is None:
+        return ("no door estimate yet" if door_stamp < 0 else
+                f"door estimate of stamp {door_stamp:.3f} s was not received")
+    return door_estimate_problem(estimate)
+
+
 def door_angle_problem(angle: float) -> str | None:
     """Why a requested hinge angle is refused, or None (the optimiser spent 80 s on 1e6 rad)."""
     if DOOR_ANGLE_RANGE.admits(angle):

@@ -6,7 +6,7 @@ from dataclasses import replace
 
 import pytest
 
-from door_contract.door_estimates import door_angle_problem, door_estimate_problem
+from door_contract.door_estimates import door_angle_problem, door_estimate_problem, requested_estimate_problem
 from door_contract.errors import ContractError
 from door_contract.json_text import MAX_PAYLOAD_DEPTH, nesting_depth, parse_bounded, read_request_id
 from door_contract.network import DISCOVERY_RANGE, keep_discovery_local
@@ -79,6 +79,13 @@ def test_non_finite_figures_become_null_and_encode():
 def test_door_estimates_a_planner_cannot_use_are_named(change, match):
     assert door_estimate_problem(ESTIMATE) is None
     assert match in door_estimate_problem(replace(ESTIMATE, **change))
+
+
+def test_a_request_without_its_estimate_says_which_is_missing():
+    assert requested_estimate_problem(None, -1.0) == "no door estimate yet"
+    assert requested_estimate_problem(None, 12.5) == "door estimate of stamp 12.500 s was not received"
+    assert requested_estimate_problem(ESTIMATE, 12.5) is None
+    assert "not a unit vector" in requested_estimate_problem(replace(ESTIMATE, normal=(0.0, 0.0, 0.0)), -1.0)
 
 
 def test_door_angles_out_of_range_are_named():

@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from door_contract.door_estimates import door_estimate_problem
+from door_contract.door_estimates import requested_estimate_problem
 from door_contract.payloads import DoorEstimate, MotionRequest
 from door_contract.vocabulary import DoorOpening, Side, grasp_hand
 from door_robot.kinematics import RobotKinematics
@@ -63,12 +63,9 @@ def motion_job(request: MotionRequest, snapshot: Snapshot, kinematics: RobotKine
     if motion is None:
         raise PlanningRefused(f"unknown motion {request.motion!r}; known: " + ", ".join(m.value for m in Motion))
     estimate = snapshot.estimate
-    if estimate is None:
-        raise PlanningRefused("no door estimate yet" if request.door_stamp < 0 else
-                              f"door estimate of stamp {request.door_stamp:.3f} s was not received")
-    problem = door_estimate_problem(estimate)
-    if problem:
-        raise PlanningRefused(problem)
+    problem = requested_estimate_problem(estimate, request.door_stamp)
+    if problem or estimate is None:
+        raise PlanningRefused(problem or "no door estimate")
     if snapshot.joint_positions is None or snapshot.base_pose is None:
         raise PlanningRefused("no valid joint states / odometry yet")
     backend = next((b for b in Backend if b.value == (request.backend or default_backend)), None)

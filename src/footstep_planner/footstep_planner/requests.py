@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from door_contract.converters.footsteps import FootPlacement
-from door_contract.door_estimates import door_estimate_problem
+from door_contract.door_estimates import requested_estimate_problem
 from door_contract.geometry import yaw_of
 from door_contract.payloads import DoorEstimate, FootstepRequest
 from door_contract.vocabulary import DoorOpening, Foot, WalkGoal
@@ -195,12 +195,9 @@ def problem_for_request(request: FootstepRequest, snapshot: Snapshot, options: F
     if snapshot.base_pose is None:
         raise RequestRefused("no valid odometry yet")
     estimate = snapshot.estimate
-    if estimate is None:
-        raise RequestRefused("no door estimate yet" if request.door_stamp < 0 else
-                             f"door estimate of stamp {request.door_stamp:.3f} s was not received")
-    problem = door_estimate_problem(estimate)
-    if problem:
-        raise RequestRefused(problem)
+    problem = requested_estimate_problem(estimate, request.door_stamp)
+    if problem or estimate is None:
+        raise RequestRefused(problem or "no door estimate")
     pose = snapshot.base_pose
     body = Pose2D(float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
     feet = None if snapshot.feet is None else _sole_poses(snapshot.feet)
