@@ -103,10 +103,7 @@ class Stabilizer:
     def __init__(self, options: StabilizerOptions, weight: float) -> None:
         self.options = options
         self._weight = weight
-        self._feedback = np.zeros(2)
-        self._cop_error = np.zeros(2)
-        self._feed_forward = (np.zeros(2), np.zeros(2))
-        self.offset = np.zeros(2)
+        self.reset()
 
     def reset(self) -> None:
         self._feedback = np.zeros(2)

@@ -384,7 +384,7 @@ class DoorWorld:
             return 0.0, ""
         deepest = min(contacts, key=lambda contact: contact[8])
         link = deepest[3]
-        name = self._client.getJointInfo(self.robot.body, link)[12].decode() if link >= 0 else "base"
+        name = self._link_name(self.robot.body, link)
         return max(-deepest[8], 0.0), name
 
     # ------------------------------------------------------------------ door

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from door_contract.payloads import DoorEstimate, OutcomeStatus
+from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
 from door_contract.vocabulary import DoorOpening, HingeSide, Side, grasp_hand
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
@@ -30,23 +30,22 @@ from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import Backend, MotionLibrary
 from door_trajopt.motions import Motion, MotionSetup, start_door_for, support_polygon
-from footstep_planner.astar import FootstepPlanner
-from footstep_planner.footstep import Pose2D
-from footstep_planner.legs import plan_legs
+from footstep_planner.parameters import PLANNER_PARAMETERS
 from footstep_planner.proposal import contract_footsteps
 from footstep_planner.requests import (
     GoalSettings,
+    Snapshot,
     WalkGoal,
+    WalkPlanners,
     door_geometry_from_estimate,
     options_for_problem,
     planner_options,
+    problem_for_request,
     stand_pose,
-    start_stance,
-    walk_problem,
 )
 
-SEARCH = {"heuristic_weight": 1.0, "max_expansions": 20_000, "max_planning_time": 30.0}
-"""The footstep planner node's default search settings."""
+NODE_DEFAULTS = {spec.name: spec.default for spec in PLANNER_PARAMETERS}
+"""The footstep planner node's default parameters (search settings and goal settings)."""
 JITTER = np.array([0.02, 0.02, np.radians(1.0)])
 """Largest stand-pose error a trial adds: along the normal, along the wall (m), yaw (rad)."""
 GRASP, RELEASE = "grasp", "release"
@@ -85,8 +84,8 @@ def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0
     along the door normal, along the wall, yaw), standing on the floor."""
     with DoorWorld(WorldConfig(door=door)) as probe:
         estimate = perfect_estimate(probe)
-    settings = GoalSettings()
-    options = planner_options("talos", SEARCH)
+    settings = GoalSettings.from_parameters(NODE_DEFAULTS)
+    options = planner_options("talos", NODE_DEFAULTS)
     geometry = door_geometry_from_estimate(estimate, door.opening, 0.0, settings.handle_standoff)
     stand = stand_pose(geometry, options, settings)
     return DoorWorld(WorldConfig(door=door, stance=StanceConfig(
@@ -134,22 +133,17 @@ def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstim
 
 
 def walk_through(world: DoorWorld, estimate: DoorEstimate) -> tuple[str, str, dict[str, float]]:
-    """Plan the passage from the measured feet and walk it: (status, reason, peak contact forces)."""
-    settings, options = GoalSettings(), planner_options("talos", SEARCH)
-    door = door_geometry_from_estimate(estimate, world.config.door.opening, world.door_state().hinge_angle,
-                                       settings.handle_standoff)
+    """Plan the passage from the measured feet as the footstep planner node does (the same
+    request, snapshot and planners) and walk it: (status, reason, peak contact forces)."""
+    settings, options = GoalSettings.from_parameters(NODE_DEFAULTS), planner_options("talos", NODE_DEFAULTS)
+    request = FootstepRequest(0, WalkGoal.THROUGH, world.config.door.opening, world.door_state().hinge_angle)
     feet = world.foot_placements()
-    base = world.base_pose()
-    body = Pose2D(float(base[0, 3]), float(base[1, 3]), float(np.arctan2(base[1, 0], base[0, 0])))
-    soles = tuple(Pose2D(feet[side].x, feet[side].y, feet[side].yaw) for side in (Side.LEFT, Side.RIGHT))
-    start = start_stance(body, options.nominal_foot_separation, soles)
-    problem = walk_problem(WalkGoal.THROUGH, door, start, options, settings)
-    planner = FootstepPlanner(problem.world, options_for_problem(problem, WalkGoal.THROUGH, options))
-    result = (plan_legs(planner, start, problem.legs, 0) if len(problem.legs) > 1
-              else planner.plan(start, problem.legs[0].goal))
-    if not result.succeeded:
+    snapshot = Snapshot(world.base_pose(), [feet[Side.LEFT], feet[Side.RIGHT]], estimate, None)
+    problem = problem_for_request(request, snapshot, options, settings)
+    result, _ = WalkPlanners().plan(problem, options_for_problem(problem, WalkGoal.THROUGH, options))
+    if not result.succeeded or result.plan is None:
         return "planning failed", f"{result.outcome.value}: {result.reason}", {}
-    execution, peaks = FootstepExecution(world, contract_footsteps(start, result.plan)), {}
+    execution, peaks = FootstepExecution(world, contract_footsteps(problem.start, result.plan)), {}
     while not execution.command():
         world.step()
         for name, force in world.door_contact_forces().items():

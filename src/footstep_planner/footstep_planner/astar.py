@@ -129,7 +129,8 @@ class FootstepPlanner:
                               plan.planning_time)
         bounds = Bounds.around([(start.body_pose.x, start.body_pose.y), (goal.x, goal.y)],
                                search_options.search_margin)
-        supports = (start.left, start.right) if first_foot is None else (start.foot(first_foot.other),)  # it stands on the other
+        # the first step is taken from the other foot: that foot is the search's root
+        supports = (start.left, start.right) if first_foot is None else (start.foot(first_foot.other),)
         roots = tuple(step for step in supports if self._state_is_free(step))
         if not roots:
             return failed(PlanOutcome.INVALID_START, "no room for a first step: the body "
