@@ -13,6 +13,7 @@ from door_bringup.monte_carlo import (
     _run_folder,
     draw_trials,
     falls_line,
+    main,
     overhead_line,
     run_trials,
     sample_trial,
@@ -98,3 +99,10 @@ def test_the_same_seed_draws_the_same_doors_in_the_same_order():
     first = draw_trials(np.random.default_rng(7), TaskOptions(), 5, ["pull"])
     assert first == draw_trials(np.random.default_rng(7), TaskOptions(), 5, ["pull"])
     assert {trial.opening for trial in first} == {"pull"}
+
+
+@pytest.mark.parametrize("argv", [["--jobs", "0"], ["--trials", "0"]])
+def test_no_trials_or_no_jobs_is_refused_before_anything_runs(argv):
+    with pytest.raises(SystemExit) as stop:
+        main(argv)
+    assert stop.value.code == 2
