@@ -5,6 +5,8 @@ from door_contract.parameters import ParameterSpec
 NODE_NAME = "door_detector"
 
 DETECTOR_PARAMETERS = (
+    ParameterSpec("robot_profile", "talos", "robot profile (params/robot_<name>.yaml): whose head camera "
+                  "the frames come from"),
     ParameterSpec("vote_frames", 10, "window of the vote: frames whose estimates are voted on "
                   "([Banerjee 2015] Sec. III-A: 10)", minimum=1, maximum=100),
     ParameterSpec("vote_min_agreeing", 2, "agreeing estimates (more than half of the window's) that "

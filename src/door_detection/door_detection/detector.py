@@ -1,0 +1,176 @@
+"""The door detector without ROS: matched camera frames and scribbles in, what to publish out.
+
+:class:`DoorDetector` is what ``/door_detector`` does between its messages: each decoded frame
+(colour, depth, intrinsics, the camera's pose in ``odom``) goes through the automatic pipeline
+([Banerjee 2015] Sec. III-A) or, while an operator's scribble is recent, the operator-aided one
+(Sec. III-B); the estimate is moved into ``odom`` (``odom_T_optical`` · p) and voted over the
+last N frames (:mod:`door_detection.voting`); a confirmed vote becomes the contract's
+:class:`~door_contract.payloads.DoorEstimate` and the handle pose. It keeps the counters the
+node reports (frames taken in, rejected, dropped incomplete).
+
+The camera comes from the robot profile (:class:`DetectorCamera`): its images and CameraInfo
+are in the contract's optical frame, which the robot's TF tree hangs below the profile's
+``head_camera_frame``. A frame stamped in another frame is some other camera's and is refused.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from door_contract.converters.camera_info import CameraIntrinsics
+from door_contract.frames import Frame
+from door_contract.payloads import DoorEstimate
+from door_detection.automatic import detect_automatic
+from door_detection.estimate import DetectedDoor, DetectionResult
+from door_detection.frame_sync import DroppedFrame
+from door_detection.operator_aided import detect_from_scribble
+from door_detection.options import DetectionOptions
+from door_detection.payload import contract_estimate
+from door_detection.scribble import scribble_problem
+from door_detection.voting import Voter
+from door_robot.profile import RobotProfile
+
+__all__ = ["CameraFrame", "DetectorCamera", "DoorDetector", "FrameReport", "NominalDoor"]
+
+UP = np.array([0.0, 0.0, 1.0])
+"""The world's up in ``odom`` (REP-103: z up)."""
+
+
+@dataclass(frozen=True)
+class DetectorCamera:
+    """The head camera of the robot profile ``robot``: its images and CameraInfo are stamped in
+    ``optical_frame`` (the contract's), the camera's pose in ``pose_frame``; TF hangs the optical
+    frame below ``camera_link`` (the profile's ``head_camera_frame``)."""
+
+    robot: str
+    camera_link: str
+    optical_frame: str = Frame.HEAD_CAMERA_OPTICAL.value
+    pose_frame: str = Frame.ODOM.value
+
+    @classmethod
+    def of(cls, profile: RobotProfile) -> DetectorCamera:
+        return cls(profile.name, profile.head_camera_frame)
+
+    def frame_problem(self, image_frames: dict[str, str], pose_frame: str) -> str | None:
+        """Why a frame whose streams are stamped in ``image_frames`` (stream → frame id) and
+        whose camera pose is in ``pose_frame`` is not this camera's, or None."""
+        wrong = {stream: frame for stream, frame in image_frames.items() if frame != self.optical_frame}
+        if wrong:
+            found = ", ".join(f"{stream} in {frame!r}" for stream, frame in sorted(wrong.items()))
+            return (f"{found}: {self.robot}'s head camera publishes in {self.optical_frame!r} "
+                    f"(below {self.camera_link!r})")
+        if pose_frame != self.pose_frame:
+            return f"camera pose in {pose_frame!r}, expected {self.pose_frame!r}"
+        return None
+
+
+@dataclass(frozen=True)
+class NominalDoor:
+    """What the operator-aided mode assumes of the door it does not measure (m)."""
+
+    width: float = 0.914
+    height: float = 2.083
+    grasp_to_free_edge: float = 0.136
+
+    def as_parameters(self) -> dict[str, float]:
+        """The names :func:`door_detection.payload.contract_estimate` reads."""
+        return {"nominal_door_width": self.width, "nominal_door_height": self.height,
+                "grasp_to_free_edge": self.grasp_to_free_edge}
+
+
+@dataclass(frozen=True)
+class CameraFrame:
+    """One matched frame, decoded: images in the optical frame, ``camera_pose`` = odom_T_optical."""
+
+    stamp: float  # s
+    rgb: np.ndarray  # H×W×3 uint8
+    depth: np.ndarray  # H×W metres, NaN where unknown
+    intrinsics: CameraIntrinsics
+    camera_pose: np.ndarray  # 4×4
+
+
+@dataclass(frozen=True)
+class FrameReport:
+    """What one frame (or one refusal) gave: a note for the heartbeat (and the log, if
+    ``logged``), whether that is a warning, the frame's own estimate (optical frame, for the
+    debug overlay) and, when the vote confirmed a door, the estimate to publish and its handle
+    pose (odom)."""
+
+    note: str
+    warning: bool = False
+    logged: bool = True
+    seen: DetectedDoor | None = None
+    confirmed: DoorEstimate | None = None
+    handle_pose: np.ndarray | None = None
+    values: dict[str, object] = field(default_factory=dict)
+
+
+class DoorDetector:
+    """The detector's state between frames: the vote, the operator's scribble, the counters."""
+
+    def __init__(self, options: DetectionOptions, camera: DetectorCamera, nominal: NominalDoor = NominalDoor(),
+                 scribble_timeout: float = 30.0) -> None:
+        self.options, self.camera, self.nominal = options, camera, nominal
+        self.scribble_timeout = scribble_timeout  # s, wall clock
+        self.voter = Voter(options)
+        self.scribble: tuple[float, np.ndarray] | None = None  # (wall time, N×2 pixels)
+        self.image_size: tuple[int, int] | None = None  # (width, height) of the last CameraInfo
+        self.frames = self.rejected = self.incomplete = 0
+
+    def counters(self) -> dict[str, object]:
+        return {"frames": self.frames, "rejected": self.rejected}
+
+    def take_scribble(self, pixels: np.ndarray, now: float) -> FrameReport:
+        """An operator's scribble (N×2 pixels) at wall time ``now``: checked against the image size;
+        a good one replaces the vote so far and is used for the next ``scribble_timeout`` s."""
+        problem = scribble_problem(pixels, *(self.image_size or (None, None)))
+        if problem:
+            return FrameReport(f"scribble refused: {problem}; automatic detection goes on", warning=True)
+        self.scribble = (now, pixels)
+        self.voter.reset()  # the operator's word replaces what was voted so far
+        return FrameReport(f"scribble with {len(pixels)} points: operator-aided detection next")
+
+    def reject_input(self, stamp: float, problem: str) -> FrameReport:
+        """A frame that arrived but cannot be used (its messages did not decode, or came from
+        another camera): counted as taken in and rejected."""
+        self.frames += 1
+        return self.refuse(f"frame at {stamp:.2f} s rejected: {problem}")
+
+    def refuse(self, reason: str, warning: bool = True) -> FrameReport:
+        """A frame that gave no estimate (no door: ``warning`` False; a crash), counted as rejected."""
+        self.rejected += 1
+        return FrameReport(reason, warning)
+
+    def dropped(self, frame: DroppedFrame) -> FrameReport:
+        """An incomplete frame given up, saying which streams it lacked."""
+        self.incomplete += 1
+        missing = frame.describe()
+        return FrameReport(f"frame at {frame.stamp:.2f} s dropped: no {missing} with its stamp", warning=True,
+                           values={"incomplete": self.incomplete, "missing": missing})
+
+    def process(self, frame: CameraFrame, now: float) -> FrameReport:
+        """Detect in ``frame`` (at wall time ``now``), vote, and say what to publish."""
+        self.frames += 1
+        result = self._detect(frame, now)
+        if not result.ok or result.estimate is None:
+            self.voter.add(None)
+            return self.refuse(f"frame at {frame.stamp:.2f} s: {result.outcome.value}: {result.reason}", False)
+        vote = self.voter.add(result.estimate.transformed(frame.camera_pose))
+        report: dict[str, Any] = {"note": f"{vote.outcome.value} {vote.agreeing}/{vote.window}",
+                                  "logged": False, "seen": result.estimate,
+                                  "values": {"frame_ms": round(result.elapsed * 1000.0, 1),
+                                             "mode": result.estimate.mode.value}}
+        if vote.ok and vote.estimate is not None:
+            report["confirmed"] = contract_estimate(vote.estimate, frame.stamp, self.nominal.as_parameters())
+            report["handle_pose"] = vote.estimate.handle_pose(up=UP)
+        return FrameReport(**report)
+
+    def _detect(self, frame: CameraFrame, now: float) -> DetectionResult:
+        if self.scribble is not None and now - self.scribble[0] <= self.scribble_timeout:
+            up_in_optical = frame.camera_pose[:3, :3].T @ UP
+            return detect_from_scribble(frame.rgb, frame.depth, frame.intrinsics, self.scribble[1], self.options,
+                                        up=up_in_optical)
+        return detect_automatic(frame.rgb, frame.depth, frame.intrinsics, self.options)
