@@ -10,8 +10,8 @@ SUPERVISOR_PARAMETERS = (
     ParameterSpec("opening", "push", "how the door opens as seen from the robot", choices=("push", "pull")),
     ParameterSpec("backend", "sqp", "trajectory optimiser backend asked for every motion",
                   choices=("sqp", "chomp")),
-    ParameterSpec("robot_profile", "talos", "robot profile (params/robot_<name>.yaml): its step_duration "
-                  "sets how long a footstep plan may take"),
+    ParameterSpec("robot_profile", "talos", "robot profile (params/robot_<name>.yaml): its arms are the hands "
+                  "it grasps with, its step_duration sets how long a footstep plan may take"),
     ParameterSpec("planning_timeout", 60.0, "bound on planning one state (detection included), wall clock; "
                   "a timeout repeats the state", unit="s", minimum=1.0, maximum=3600.0),
     ParameterSpec("execution_timeout_factor", 2.0, "an execution may take its nominal duration (trajectory "

@@ -1,0 +1,200 @@
+"""The supervisor without ROS: the machine, its bookkeeping and the robot, between messages.
+
+:class:`Supervisor` is what ``/fsm_supervisor`` does with what it hears: the JSON payloads and
+operator words of its topics become machine events (:mod:`door_fsm.answers`), the answers are
+paired with their requests (:mod:`door_fsm.exchange`), the door's context is kept
+(:mod:`door_fsm.door_context`) and the graph watched (:mod:`door_fsm.graph_watch`). Every input
+returns the machine's actions, for the node to perform; after performing them the node calls
+:meth:`Supervisor.settle` (answers to older requests are stale from then on). Bad input (a
+payload that does not decode, an estimate no planner can use, an unknown operator command)
+changes nothing and returns one :class:`~door_fsm.actions.Notice` saying why.
+
+What it needs of the robot comes from its profile (:class:`SupervisedRobot`): which hands it
+has (the arm chains; a door whose grasp hand the robot lacks fails the grasp, saying so) and
+how long a footstep takes (a walk's nominal duration, which scales its execution deadline).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from door_contract.errors import ContractError
+from door_contract.payloads import (
+    ExecutionOutcome,
+    FootstepRequest,
+    MotionRequest,
+    OutcomeStatus,
+    PlanningOutcome,
+    TaskReport,
+    decode,
+)
+from door_contract.topics import Services, ServiceSpec
+from door_contract.vocabulary import DoorOpening, Side
+from door_fsm import actions as act
+from door_fsm import events as ev
+from door_fsm.answers import execution_event, planning_event, usable_door_estimate
+from door_fsm.door_context import DoorContext
+from door_fsm.exchange import PlanExchange, Proposal
+from door_fsm.graph_watch import GraphStep, GraphWatch
+from door_fsm.machine import DoorTaskMachine, MachineOptions
+from door_fsm.operator_commands import AutonomyLevel, UnknownCommandError, parse_command
+from door_fsm.records import Instant
+from door_fsm.summaries import door_summary, task_report, work_of
+from door_robot.profile import RobotProfile
+
+__all__ = ["GRASP_SERVICES", "SupervisedRobot", "Supervisor"]
+
+GRASP_SERVICES: dict[Side, ServiceSpec] = {Side.LEFT: Services.LEFT_GRASP, Side.RIGHT: Services.RIGHT_GRASP}
+"""The grasp service of each hand."""
+
+
+@dataclass(frozen=True)
+class SupervisedRobot:
+    """What the supervisor knows of the robot (from its profile): its name, the hands it has
+    (a side with an arm chain) and its time per footstep (s, robot clock)."""
+
+    name: str
+    hands: frozenset[Side]
+    step_duration: float
+
+    @classmethod
+    def of(cls, profile: RobotProfile) -> SupervisedRobot:
+        return cls(profile.name, frozenset(Side(side) for side in profile.arms), profile.walking.step_duration)
+
+    def grasp_services(self) -> dict[Side, ServiceSpec]:
+        """The grasp services of the robot's hands."""
+        return {side: spec for side, spec in GRASP_SERVICES.items() if side in self.hands}
+
+
+class Supervisor:
+    def __init__(self, options: MachineOptions, backend: str, robot: SupervisedRobot, graph: GraphWatch) -> None:
+        self.machine = DoorTaskMachine(options)
+        self.door = DoorContext(options.opening, backend)
+        self.robot, self.graph = robot, graph
+        self.exchange = PlanExchange(lambda message: work_of(message, robot.step_duration))
+        self._detection_request: int | None = None
+
+    @classmethod
+    def from_parameters(cls, p: Mapping[str, Any], robot: SupervisedRobot, wall_now: float) -> Supervisor:
+        """The supervisor of the node's parameters (``door_fsm.parameters``), started at wall
+        time ``wall_now`` (s); :class:`MachineOptionsError` names a bad option."""
+        options = MachineOptions(
+            opening=DoorOpening(p["opening"]), autonomy=AutonomyLevel(p["autonomy"]),
+            planning_timeout_s=p["planning_timeout"], approval_timeout_s=p["approval_timeout"],
+            execution_factor=p["execution_timeout_factor"], execution_margin_s=p["execution_timeout_margin"],
+            max_repeats=p["max_repeats"])
+        graph = GraphWatch(set(p["required_nodes"]), wall_now + p["start_delay"], p["graph_timeout"])
+        return cls(options, p["backend"], robot, graph)
+
+    # ------------------------------------------------------------------ inputs → actions
+    def door_estimate(self, text: str, now: Instant) -> list[act.Action]:
+        """A ``/door/estimate`` payload. While DETECT_DOOR waits, the estimate is its proposal and
+        the one every later request names."""
+        try:
+            estimate = usable_door_estimate(text)
+        except ContractError as error:
+            return [act.Notice(f"door estimate rejected: {error}")]
+        self.door.latest = estimate
+        if self._detection_request is None:
+            return []
+        request, self._detection_request = self._detection_request, None
+        self.door.approved = estimate
+        return self.handle(ev.ProposalReady(request, door_summary(estimate)), now)
+
+    def proposal(self, kind: str, stamp_ns: int, message: Any, now: Instant) -> list[act.Action]:
+        """A planner's proposal message (a Path or JointTrajectory, stamped ``stamp_ns``)."""
+        return self._answer(self.exchange.add_message(kind, stamp_ns, message), now)
+
+    def planning_outcome(self, kind: str, text: str, now: Instant) -> list[act.Action]:
+        """A planner's PlanningOutcome payload."""
+        try:
+            outcome = decode(PlanningOutcome, text)
+        except ContractError as error:
+            return [act.Notice(f"planning outcome rejected: {error}")]
+        return self._answer(self.exchange.add_outcome(kind, outcome), now)
+
+    def execution_outcome(self, text: str, now: Instant) -> list[act.Action]:
+        """The robot's ExecutionOutcome payload; executions not sent by this supervisor are ignored."""
+        try:
+            outcome = decode(ExecutionOutcome, text)
+        except ContractError as error:
+            return [act.Notice(f"execution outcome rejected: {error}")]
+        request = self.exchange.finished(outcome.request_id)
+        if request is None:
+            return []
+        if outcome.status is OutcomeStatus.SUCCESS and not outcome.slipped:
+            self.door.executed()
+        return self.handle(execution_event(outcome, request), now)
+
+    def operator(self, text: str, now: Instant) -> list[act.Action]:
+        """An operator's words."""
+        try:
+            word = parse_command(text)
+        except UnknownCommandError as error:
+            return [act.Notice(str(error))]
+        return self.handle(ev.OperatorSaid(word), now)
+
+    def tick(self, now: Instant, present: set[str]) -> tuple[GraphStep, list[act.Action]]:
+        """Every 0.1 s with the nodes in the graph: start the task, report lost nodes, deadlines."""
+        step = self.graph.step(now.wall, present)
+        actions = self._keep(self.machine.start(now)) if step.start else []
+        for name in step.lost:
+            actions += self.handle(ev.NodeLost(name), now)
+        if self.graph.started:
+            actions += self._keep(self.machine.tick(now))
+        return step, actions
+
+    def handle(self, event: ev.Event, now: Instant) -> list[act.Action]:
+        """The machine's actions for ``event`` (e.g. a grasp's answer)."""
+        return self._keep(self.machine.handle(event, now))
+
+    def _keep(self, actions: list[act.Action]) -> list[act.Action]:
+        """``actions`` but a detection request, which is kept here: the detector answers on its
+        own, its next usable estimate is the proposal."""
+        for action in actions:
+            if isinstance(action, act.RequestDetection):
+                self._detection_request = action.request_id
+        return [action for action in actions if not isinstance(action, act.RequestDetection)]
+
+    def settle(self) -> None:
+        """The actions are performed: answers to requests older than the current one are stale."""
+        self.exchange.begin(self.machine.request_id)
+
+    # ------------------------------------------------------------------ what the node sends
+    def request(self, action: act.RequestFootsteps | act.RequestMotion) -> tuple[str, FootstepRequest | MotionRequest]:
+        """The planner (``footsteps`` | ``motion``) and the request payload of ``action``."""
+        if isinstance(action, act.RequestFootsteps):
+            return "footsteps", self.door.footstep_request(action)
+        return "motion", self.door.motion_request(action)
+
+    def grasp_hand(self) -> tuple[Side, str]:
+        """The hand that opens this door, and why it cannot ("" if it can)."""
+        hand = self.door.grasp_hand()
+        if hand not in self.robot.hands:
+            return hand, f"{self.robot.name} has no {hand} hand (its profile's arms: " \
+                         f"{', '.join(sorted(self.robot.hands)) or 'none'})"
+        return hand, ""
+
+    def take(self, request_id: int, stamp_ns: int) -> Any | None:
+        """The approved proposal's message, to send stamped ``stamp_ns`` (None: it is gone)."""
+        proposal = self.exchange.take(request_id)
+        if proposal is None:
+            return None
+        self.exchange.sent(stamp_ns, request_id)
+        return proposal.message
+
+    def report(self, autonomy: str, robot_clock: str) -> TaskReport | None:
+        """The TaskReport once the task has ended (``robot_clock``: "sim" or "wall"), else None."""
+        if not self.machine.state.is_terminal:
+            return None
+        return task_report(self.machine.state.value, self.machine.failure_reason, self.door.opening, autonomy,
+                           self.machine.report(), robot_clock)
+
+    def _answer(self, answer: Proposal | PlanningOutcome | None, now: Instant) -> list[act.Action]:
+        if answer is None:
+            return []
+        if isinstance(answer, Proposal):
+            self.door.planned(answer.outcome)
+        return self.handle(planning_event(answer), now)

@@ -1,0 +1,125 @@
+"""The supervisor's ROS-free core: the robot's hands and step time from its profile, inputs →
+the machine's actions, bad input → one Notice and no change, a grasp hand the robot lacks."""
+
+from __future__ import annotations
+
+import pytest
+from geometry_msgs.msg import PoseStamped
+from nav_msgs.msg import Path
+
+from door_contract.payloads import (
+    DoorEstimate,
+    ExecutionKind,
+    ExecutionOutcome,
+    OutcomeStatus,
+    PlanningOutcome,
+    encode,
+)
+from door_contract.stamps import time_msg_of_ns
+from door_contract.vocabulary import DoorOpening, HingeSide, Side, WalkGoal
+from door_fsm import actions as act
+from door_fsm.graph_watch import GraphWatch
+from door_fsm.machine import MachineOptions
+from door_fsm.operator_commands import AutonomyLevel
+from door_fsm.records import Instant
+from door_fsm.supervisor import GRASP_SERVICES, SupervisedRobot, Supervisor
+from door_robot.profile import load_profile
+
+ESTIMATE = DoorEstimate(0.0, "odom", (1.2, -0.35, 0.95), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
+                        ((1.2, 0.46, 0.0), (1.2, -0.46, 0.0), (1.2, -0.46, 2.08), (1.2, 0.46, 2.08)),
+                        1.0, 10, "automatic")
+
+
+def t(seconds: float) -> Instant:
+    return Instant(seconds, seconds)
+
+
+@pytest.mark.parametrize("name", ["talos", "atlas_v4", "drc_hubo", "g1"])
+def test_the_robot_is_read_from_its_profile(name: str, request: pytest.FixtureRequest) -> None:
+    if name in ("atlas_v4", "drc_hubo"):  # their URDFs are real files in ../shared/data
+        request.getfixturevalue("shared_data")
+    profile = load_profile(name)
+    robot = SupervisedRobot.of(profile)
+    assert robot.name == name and robot.step_duration == profile.walking.step_duration
+    assert robot.hands == {Side(side) for side in profile.arms} == {Side.LEFT, Side.RIGHT}
+    assert robot.grasp_services() == GRASP_SERVICES
+
+
+def _started(robot: SupervisedRobot, opening: DoorOpening = DoorOpening.PUSH) -> Supervisor:
+    supervisor = Supervisor(MachineOptions(opening=opening, autonomy=AutonomyLevel.FULL), "sqp", robot,
+                            GraphWatch({"door_detector"}, start_at=0.0, graph_timeout=5.0))
+    step, actions = supervisor.tick(t(0.0), {"door_detector"})
+    assert step.start and act.AnnounceState("DETECT_DOOR") in actions
+    assert not any(isinstance(a, act.RequestDetection) for a in actions)  # the core waits for the detector
+    supervisor.settle()
+    return supervisor
+
+
+def _walk_request(supervisor: Supervisor) -> act.RequestFootsteps:
+    actions = supervisor.door_estimate(encode(ESTIMATE), t(1.0))
+    supervisor.settle()
+    request = next(a for a in actions if isinstance(a, act.RequestFootsteps))
+    assert request.goal is WalkGoal.STAND
+    return request
+
+
+def test_a_walk_is_requested_with_the_approved_door_and_given_its_steps_time() -> None:
+    supervisor = _started(SupervisedRobot("g1", frozenset(Side), step_duration=0.8))
+    request = _walk_request(supervisor)
+    kind, payload = supervisor.request(request)
+    assert kind == "footsteps" and payload.door == encode(ESTIMATE) and payload.request_id == request.request_id
+    path = Path(poses=[PoseStamped() for _ in range(10)])
+    path.header.stamp = time_msg_of_ns(5_000)
+    assert supervisor.proposal("footsteps", 5_000, path, t(2.0)) == []  # waits for its outcome
+    outcome = PlanningOutcome(request.request_id, OutcomeStatus.SUCCESS, details={"stamp_ns": 5_000, "steps": 10})
+    execute = next(a for a in supervisor.planning_outcome("footsteps", encode(outcome), t(3.0))
+                   if isinstance(a, act.Execute))
+    supervisor.settle()
+    assert supervisor.take(execute.request_id, 9_000) is path and supervisor.take(execute.request_id, 9_001) is None
+    # 10 steps × 0.8 s × execution_factor 2 + margin 10 s: the walk's deadline is the robot's
+    _, actions = supervisor.tick(t(3.0 + 25.0), {"door_detector"})
+    assert not any(isinstance(a, act.StopMotion) for a in actions)
+    _, actions = supervisor.tick(t(3.0 + 27.0), {"door_detector"})
+    assert any(isinstance(a, act.StopMotion) and "longer than 26.0 s" in a.reason for a in actions)
+
+
+def test_the_robots_answer_to_what_it_was_sent_finishes_the_state() -> None:
+    supervisor = _started(SupervisedRobot("talos", frozenset(Side), step_duration=1.5))
+    request = _walk_request(supervisor)
+    path = Path(poses=[PoseStamped()])
+    supervisor.proposal("footsteps", 7, path, t(2.0))
+    outcome = PlanningOutcome(request.request_id, OutcomeStatus.SUCCESS, details={"stamp_ns": 7})
+    execute = next(a for a in supervisor.planning_outcome("footsteps", encode(outcome), t(3.0))
+                   if isinstance(a, act.Execute))
+    supervisor.take(execute.request_id, 42)
+    other = ExecutionOutcome(ExecutionKind.FOOTSTEPS, 41, OutcomeStatus.SUCCESS)
+    assert supervisor.execution_outcome(encode(other), t(4.0)) == []  # not sent by this supervisor
+    done = ExecutionOutcome(ExecutionKind.FOOTSTEPS, 42, OutcomeStatus.SUCCESS)
+    actions = supervisor.execution_outcome(encode(done), t(5.0))
+    assert act.AnnounceState("OPEN_DOOR/MOVE_TO_HANDLE") in actions
+
+
+@pytest.mark.parametrize("feed, says", [
+    (lambda s: s.door_estimate("{not json", t(1.0)), "door estimate rejected"),
+    (lambda s: s.door_estimate(encode(DoorEstimate(**{**ESTIMATE.__dict__, "width": -1.0})), t(1.0)),
+     "door estimate rejected"),
+    (lambda s: s.planning_outcome("motion", '{"request_id": "x"}', t(1.0)), "planning outcome rejected"),
+    (lambda s: s.execution_outcome("[]", t(1.0)), "execution outcome rejected"),
+    (lambda s: s.operator("dance", t(1.0)), "unknown operator command 'dance'"),
+])
+def test_bad_input_is_one_notice_and_changes_nothing(feed, says: str) -> None:
+    supervisor = _started(SupervisedRobot("talos", frozenset(Side), step_duration=1.5))
+    before = (supervisor.machine.state, supervisor.machine.request_id, supervisor.door.latest)
+    actions = feed(supervisor)
+    assert len(actions) == 1 and isinstance(actions[0], act.Notice) and says in actions[0].text, actions
+    assert (supervisor.machine.state, supervisor.machine.request_id, supervisor.door.latest) == before
+
+
+def test_a_door_whose_grasp_hand_the_robot_lacks_says_so() -> None:
+    one_armed = SupervisedRobot("one_armed", frozenset({Side.LEFT}), step_duration=1.0)
+    supervisor = _started(one_armed)
+    supervisor.door.approved = ESTIMATE  # hinge left, push: the right hand opens it
+    hand, problem = supervisor.grasp_hand()
+    assert hand is Side.RIGHT and problem == "one_armed has no right hand (its profile's arms: left)"
+    assert one_armed.grasp_services() == {Side.LEFT: GRASP_SERVICES[Side.LEFT]}
+    assert _started(SupervisedRobot("talos", frozenset(Side), 1.5)).grasp_hand() == (Side.RIGHT, "")
