@@ -106,3 +106,34 @@ def test_no_trials_or_no_jobs_is_refused_before_anything_runs(argv):
     with pytest.raises(SystemExit) as stop:
         main(argv)
     assert stop.value.code == 2
+
+
+def _recorded(folder, **changed) -> None:
+    """A Monte-Carlo folder as ``main`` writes it with its defaults (and ``changed``)."""
+    settings = {"robot": "talos", "trials": 50, "seed": 0, "autonomy": "full", "camera_rate": 2.0,
+                "openings": ["pull", "push"], "timeout": 600.0, **changed}
+    (folder / SETTINGS_FILE).write_text(json.dumps(settings))
+
+
+def test_a_run_is_not_resumed_with_another_robot(tmp_path, capsys):
+    _recorded(tmp_path)
+    with pytest.raises(SystemExit) as stop:  # refused before any trial runs (none would run here)
+        main(["--robot", "g1", "--resume", str(tmp_path)])
+    assert stop.value.code == 2
+    assert 'other settings (robot): {"robot": "talos"}' in capsys.readouterr().err
+    assert not list(tmp_path.glob("trial_*"))
+
+
+def test_a_folder_from_before_the_robot_option_resumes_as_talos_only(tmp_path):
+    settings = {"trials": 2, "seed": 4}
+    (tmp_path / SETTINGS_FILE).write_text(json.dumps(settings))  # no "robot": written before --robot
+    assert _run_folder(Workspace(tmp_path), tmp_path, {**settings, "robot": "talos"}) == tmp_path
+    with pytest.raises(ResumeError, match=r"\(robot\)"):
+        _run_folder(Workspace(tmp_path), tmp_path, {**settings, "robot": "g1"})
+
+
+def test_the_robot_is_in_the_settings_and_in_every_trial(tmp_path):
+    out = _run_folder(Workspace(tmp_path), None, {"robot": "g1", "trials": 1})
+    assert json.loads((out / SETTINGS_FILE).read_text())["robot"] == "g1"
+    trials = draw_trials(np.random.default_rng(1), TaskOptions(robot="g1"), 3, ["push", "pull"])
+    assert {trial.robot for trial in trials} == {"g1"}

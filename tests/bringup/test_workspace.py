@@ -57,6 +57,7 @@ def test_every_executable_starts_its_node_and_stops_on_sigint(workspace, rclpy_c
     # issue #12: these exited 1 with a traceback
     (GRAPH[1], ["door_width_min:=1.2", "door_width_max:=1.0"], r"'door_width_min' must not exceed 'door_width_max'"),
     (GRAPH[0], ["robot_profile:=nonexistent"], r"robot profile not found"),
+    (GRAPH[1], ["robot_profile:=nonexistent"], r"'robot_profile' = 'nonexistent'.*not found"),
     (GRAPH[2], ["robot_profile:=nonexistent"], r"robot profile not found"),
     (GRAPH[3], ["robot_profile:=nonexistent"], r"'robot_profile' = 'nonexistent'.*not found"),
     (GRAPH[4], ["robot_profile:=nonexistent"], r"'robot_profile' = 'nonexistent'.*not found"),

@@ -1,8 +1,8 @@
 """``door_task``: the main job — the whole graph runs the door task in simulation.
 
-    door_task [--opening push|pull] [--hinge left|right] [--autonomy supervised]
-              [--operator auto|console] [--seed 0] [--backend sqp|chomp] [--run-dir DIR]
-              [--foxglove [--foxglove-port 8765]]
+    door_task [--robot talos|atlas_v4|drc_hubo|g1] [--opening push|pull] [--hinge left|right]
+              [--autonomy supervised] [--operator auto|console] [--seed 0] [--backend sqp|chomp]
+              [--run-dir DIR] [--foxglove [--foxglove-port 8765]]
 
 Starts the sim bridge, the four nodes and the proposal markers as separate processes (what
 ``ros2 launch door_bringup door_task.launch.py`` does on a real install), records every topic
@@ -13,6 +13,8 @@ the form of [Banerjee 2015]'s Table I, stops the graph with SIGINT, and writes t
 ``bag/``, ``logs/``, ``report.md``, ``report.json`` and plots (``summary.png`` first). While it
 runs it prints the FSM's states and a progress line; ``--foxglove`` also serves the graph on a
 Foxglove WebSocket (ws://127.0.0.1:8765; layout in ``src/door_viz/layouts/door_task.json``).
+``--robot`` names the robot profile (``params/robot_<name>.yaml``) given to every node that
+declares ``robot_profile`` (:func:`door_bringup.params_files.robot_nodes`); default TALOS.
 """
 
 from __future__ import annotations
@@ -31,6 +33,7 @@ from rclpy.node import Node
 from std_msgs.msg import String
 
 from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH, NodeLaunch
+from door_bringup.params_files import ROBOT_PARAMETER, robot_names, robot_nodes
 from door_bringup.processes import ProcessSupervisor
 from door_bringup.progress_monitor import ProgressMonitor
 from door_bringup.run_plots import plot_run
@@ -41,12 +44,15 @@ from door_contract.node_support import create_contract_publisher, create_contrac
 from door_contract.payloads import TaskReport, decode
 from door_contract.topics import Topics
 from door_fsm.operator_commands import request_id_of
+from door_robot.errors import RobotModelError
+from door_robot.profile import load_profile
 
 RECORDER = NodeLaunch("door_bringup", "bag_record", "bag_recorder")
 
 
 @dataclass(frozen=True)
 class TaskOptions:
+    robot: str = "talos"  # a robot profile, params/robot_<name>.yaml
     opening: str = "push"
     hinge: str = "left"
     autonomy: str = "supervised"
@@ -68,20 +74,24 @@ class TaskOptions:
     foxglove_port: int | None = None  # serve the graph on ws://127.0.0.1:<port> (None: no live view)
 
     def node_overrides(self) -> dict[str, list[str]]:
-        """``-p name:=value`` arguments per node."""
+        """``-p name:=value`` arguments per node; the robot goes to every node that declares
+        ``robot_profile``."""
         sim = {"door_opening": self.opening, "hinge_side": self.hinge, "seed": self.seed,
                "stance_distance": self.distance, "stance_lateral": self.lateral, "stance_yaw": self.yaw,
                "depth_noise": self.depth_noise, "wind_amplitude": self.wind, "door_width": self.door_width,
                "handle_height": self.handle_height, "camera_rate": self.camera_rate}
         fsm = {"opening": self.opening, "autonomy": self.autonomy, "backend": self.backend}
-        own = {"sim_bridge": sim, "fsm_supervisor": fsm,
-               "foxglove_bridge": {} if self.foxglove_port is None else {"port": self.foxglove_port}}
+        own: dict[str, dict[str, object]] = {
+            "sim_bridge": sim, "fsm_supervisor": fsm,
+            "foxglove_bridge": {} if self.foxglove_port is None else {"port": self.foxglove_port}}
+        takes_robot = robot_nodes()
         return {launch.node_name: _ros_args({**own.get(launch.node_name, {}),
+                                             **({ROBOT_PARAMETER: self.robot} if launch.node_name in takes_robot else {}),
                                              **({"use_sim_time": True} if launch.use_sim_time else {})})
                 for launch in (*GRAPH, FOXGLOVE_BRIDGE)}
 
 
-def _ros_args(values: dict) -> list[str]:
+def _ros_args(values: dict[str, object]) -> list[str]:
     args = []
     for name, value in values.items():
         text = str(value).lower() if isinstance(value, bool) else str(value)
@@ -175,8 +185,8 @@ def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, 
 
 def write_report(run_dir: Path, options: TaskOptions, report: dict) -> str:
     ok = report["final_state"] == "DONE"
-    table = format_table(phase_rows([report]), 1, int(ok),
-                         f"Door task: {options.opening} door, hinge {options.hinge}, seed {options.seed}")
+    table = format_table(phase_rows([report]), 1, int(ok), f"Door task: {options.robot}, {options.opening} door, "
+                         f"hinge {options.hinge}, seed {options.seed}")
     lines = [f"# Door task run {run_dir.name}", "", f"Final state: **{report['final_state']}**"
              + (f" — {report['failure_reason']}" if report.get("failure_reason") else ""), "",
              f"Wall time: {report.get('wall_time_s', 0):.1f} s; autonomy {options.autonomy}; backend {options.backend}",
@@ -193,6 +203,7 @@ def write_report(run_dir: Path, options: TaskOptions, report: dict) -> str:
 
 def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_robot_argument(parser)
     parser.add_argument("--opening", choices=("push", "pull"), default="push")
     parser.add_argument("--hinge", choices=("left", "right"), default="left")
     parser.add_argument("--autonomy", choices=("full", "supervised", "step"), default="supervised")
@@ -213,25 +224,42 @@ def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
     args, _ = parser.parse_known_args(argv)
     if args.compression != "none" and args.storage != "mcap":
         parser.error("--compression zstd needs --storage mcap")
-    options = TaskOptions(args.opening, args.hinge, args.autonomy, args.operator, args.seed, args.backend,
-                          args.distance, timeout_s=args.timeout, record=not args.no_bag, storage=args.storage,
+    check_robot(parser, args.robot)
+    options = TaskOptions(robot=args.robot, opening=args.opening, hinge=args.hinge, autonomy=args.autonomy,
+                          operator=args.operator, seed=args.seed, backend=args.backend, distance=args.distance,
+                          timeout_s=args.timeout, record=not args.no_bag, storage=args.storage,
                           camera_rate=args.camera_rate, compression=args.compression,
                           foxglove_port=args.foxglove_port if args.foxglove else None)
     return options, args.run_dir
+
+
+def add_robot_argument(parser: argparse.ArgumentParser) -> None:
+    """``--robot NAME``: one of the robot profiles there are (default TALOS)."""
+    parser.add_argument("--robot", choices=robot_names(), default="talos",
+                        help="robot profile (params/robot_<name>.yaml) of every node that takes one")
+
+
+def check_robot(parser: argparse.ArgumentParser, robot: str) -> None:
+    """Refuse (exit 2) a profile that cannot be loaded, e.g. a URDF from ../shared that is absent,
+    before any node starts: each would otherwise stop on the same parameter error."""
+    try:
+        load_profile(robot)
+    except RobotModelError as error:
+        parser.error(f"--robot {robot}: {error}")
 
 
 def main(argv: list[str] | None = None) -> int:
     options, run_dir = parse_options(argv)
     workspace = Workspace(repository_root())
     stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%SZ")
-    run_dir = run_dir or workspace.root / "runs" / f"{stamp}_{options.opening}_{options.hinge}"
+    run_dir = run_dir or workspace.root / "runs" / f"{stamp}_{options.robot}_{options.opening}_{options.hinge}"
     run_dir.mkdir(parents=True, exist_ok=True)
-    print(f"door task: {options.opening} door hinged {options.hinge}, autonomy {options.autonomy}, "
-          f"operator {options.operator}; run folder {run_dir}", flush=True)
+    print(f"door task: {options.robot}, {options.opening} door hinged {options.hinge}, autonomy "
+          f"{options.autonomy}, operator {options.operator}; run folder {run_dir}", flush=True)
     report = run_task(options, run_dir, workspace)
     table = write_report(run_dir, options, report)
     print(table, flush=True)
-    for plot in plot_run(run_dir, options.opening):
+    for plot in plot_run(run_dir, options.opening, options.robot):
         print(f"plot: {plot}", flush=True)
     print(f"\nreport: {run_dir / 'report.md'}", flush=True)
     return 0 if report["final_state"] == "DONE" else 1

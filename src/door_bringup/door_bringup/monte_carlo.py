@@ -1,6 +1,6 @@
 """``door_monte_carlo``: the door task over randomised doors, as [Banerjee 2015]'s Table I.
 
-    python -m door_bringup.monte_carlo --trials 50 [--seed 0] [--autonomy full] [--jobs 2]
+    python -m door_bringup.monte_carlo --trials 50 [--robot g1] [--seed 0] [--autonomy full] [--jobs 2]
     python -m door_bringup.monte_carlo --trials 50 --resume runs/monte_carlo_<stamp>
 
 Each trial runs the whole graph (separate processes, real DDS) on a door drawn from the
@@ -8,7 +8,9 @@ seed: push or pull, left or right hinge, start distance, lateral offset and yaw,
 width, handle height, wind on the door and depth noise. Prints a progress bar, then
 success rates per phase and overall, and writes ``runs/monte_carlo_<stamp>/summary.md``. Every
 finished trial is kept in ``trial_<n>/trial.json``: ``--resume`` reads those and runs the rest
-(the doors come from the seed, so the same settings draw the same doors).
+(the doors come from the seed, so the same settings draw the same doors). The settings,
+the robot among them, are kept in ``monte_carlo.json``: a folder is resumed only with the
+settings it was started with.
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ from pathlib import Path
 
 import numpy as np
 
-from door_bringup.door_task import TaskOptions, run_task
+from door_bringup.door_task import TaskOptions, add_robot_argument, check_robot, run_task
 from door_bringup.table_one import format_table, phase_of, phase_rows
 from door_bringup.workspace import Workspace, repository_root
 
@@ -54,6 +56,7 @@ def progress(done: int, total: int, successes: int, started: float) -> str:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    add_robot_argument(parser)
     parser.add_argument("--trials", type=int, default=50)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--autonomy", choices=("full", "supervised", "step"), default="full")
@@ -68,17 +71,19 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.trials < 1 or args.jobs < 1:
         parser.error("--trials and --jobs must be at least 1")
+    check_robot(parser, args.robot)
     workspace = Workspace(repository_root())
-    settings = {"trials": args.trials, "seed": args.seed, "autonomy": args.autonomy,
+    settings = {"robot": args.robot, "trials": args.trials, "seed": args.seed, "autonomy": args.autonomy,
                 "camera_rate": args.camera_rate, "openings": sorted(args.openings), "timeout": args.timeout}
     try:
         out = _run_folder(workspace, args.resume, settings)
     except ResumeError as error:
         parser.error(str(error))
-    base = TaskOptions(autonomy=args.autonomy, timeout_s=args.timeout, record=False, camera_rate=args.camera_rate)
+    base = TaskOptions(robot=args.robot, autonomy=args.autonomy, timeout_s=args.timeout, record=False,
+                       camera_rate=args.camera_rate)
     trials = draw_trials(np.random.default_rng(args.seed), base, args.trials, args.openings)
     reports = run_trials(trials, out, workspace, args.jobs)
-    text = summary(reports)
+    text = f"Robot: {args.robot}\n\n" + summary(reports)
     print(text)
     (out / "summary.md").write_text(text)
     (out / "trials.json").write_text(json.dumps(reports, indent=2, default=str))
@@ -106,9 +111,9 @@ def _run_folder(workspace: Workspace, resume: Path | None, settings: dict) -> Pa
     recorded = resume / SETTINGS_FILE
     if not recorded.is_file():
         raise ResumeError(f"{resume} is not a Monte-Carlo run folder (no {SETTINGS_FILE})")
-    earlier = json.loads(recorded.read_text())
+    earlier, settings = {**RECORDED_BEFORE, **json.loads(recorded.read_text())}, {**RECORDED_BEFORE, **settings}
     if earlier != settings:
-        differing = sorted(key for key in settings if earlier.get(key) != settings[key])
+        differing = sorted(key for key in earlier.keys() | settings.keys() if earlier.get(key) != settings.get(key))
         raise ResumeError(f"{resume} was run with other settings ({', '.join(differing)}): "
                          f"{json.dumps({key: earlier.get(key) for key in differing})}")
     return resume
@@ -119,6 +124,8 @@ class ResumeError(Exception):
 
 
 SETTINGS_FILE = "monte_carlo.json"
+RECORDED_BEFORE = {"robot": "talos"}
+"""What a setting a folder does not record was: folders written before ``--robot`` ran TALOS."""
 TRIAL_FILE = "trial.json"
 
 

@@ -2,7 +2,9 @@
 
     python -m door_bringup.params_files          # rewrite every node's params file
 
-A test checks that the files and the specs agree, so run this after changing a spec.
+A test checks that the files and the specs agree, so run this after changing a spec. The specs
+also say which nodes take the robot profile (:func:`robot_nodes`): the main job's ``--robot``
+reaches exactly those, and the choices are the profiles there are (:func:`robot_names`).
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ from door_bringup.workspace import Workspace, repository_root
 from door_contract.parameters import ParameterSpec
 from door_detection.parameters import DETECTOR_PARAMETERS
 from door_fsm.parameters import SUPERVISOR_PARAMETERS
+from door_robot.locations import params_dir
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS
 from door_trajopt.parameters import OPTIMIZER_PARAMETERS
 from door_viz.parameters import FOXGLOVE_NODE, FOXGLOVE_PARAMETERS, MARKERS_NODE, MARKERS_PARAMETERS
@@ -28,6 +31,20 @@ SPECS_BY_NODE = {
     MARKERS_NODE: MARKERS_PARAMETERS,
     FOXGLOVE_NODE: FOXGLOVE_PARAMETERS,
 }
+
+ROBOT_PARAMETER = "robot_profile"
+"""The parameter naming the robot profile (``params/robot_<name>.yaml``) in every node that needs one."""
+
+
+def robot_nodes() -> frozenset[str]:
+    """The nodes whose specs declare :data:`ROBOT_PARAMETER`: where one robot option must reach."""
+    return frozenset(node for node, specs in SPECS_BY_NODE.items()
+                     if any(spec.name == ROBOT_PARAMETER for spec in specs))
+
+
+def robot_names() -> tuple[str, ...]:
+    """The robot profiles there are (``robot_<name>.yaml`` in door_robot's profile folder), sorted."""
+    return tuple(sorted(path.stem.removeprefix("robot_") for path in params_dir().glob("robot_*.yaml")))
 
 
 def _yaml_value(value: object) -> str:

@@ -97,12 +97,12 @@ def save_detection(bag: Path, output: Path) -> Path | None:
     return output
 
 
-def plot_run(run_dir: Path, opening: str | None = None) -> list[Path]:
-    """Every plot the run's bag allows; returns the files written."""
+def plot_run(run_dir: Path, opening: str | None = None, robot: str = "talos") -> list[Path]:
+    """Every plot the run's bag allows (``robot``: the run's robot profile); returns the files written."""
     bag = run_dir / "bag"
     if not (bag / "metadata.yaml").is_file():
         return []
-    written = [plot_summary(bag, run_dir / "summary.png", opening=opening),
+    written = [plot_summary(bag, run_dir / "summary.png", robot, opening),
                plot_footsteps(bag, run_dir / "footsteps.png"),
                plot_trajectories(bag, run_dir / "trajectories.png"),
                save_detection(bag, run_dir / "detection.png")]
