@@ -6,9 +6,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from door_detection.detector import CameraFrame, DetectorCamera, DoorDetector, NominalDoor
+from door_detection.detector import CameraFrame, DetectorCamera, DoorDetector
 from door_detection.frame_sync import DroppedFrame
 from door_detection.options import DetectionOptions
+from door_detection.payload import NominalDoor
 from door_robot.profile import load_profile
 
 PROFILES = ("talos", "atlas_v4", "drc_hubo", "g1")

@@ -70,7 +70,7 @@ def test_a_walk_is_requested_with_the_approved_door_and_given_its_steps_time() -
     assert kind == "footsteps" and payload.door == encode(ESTIMATE) and payload.request_id == request.request_id
     path = Path(poses=[PoseStamped() for _ in range(10)])
     path.header.stamp = time_msg_of_ns(5_000)
-    assert supervisor.proposal("footsteps", 5_000, path, t(2.0)) == []  # waits for its outcome
+    assert supervisor.proposal("footsteps", path, t(2.0)) == []  # waits for its outcome
     outcome = PlanningOutcome(request.request_id, OutcomeStatus.SUCCESS, details={"stamp_ns": 5_000, "steps": 10})
     execute = next(a for a in supervisor.planning_outcome("footsteps", encode(outcome), t(3.0))
                    if isinstance(a, act.Execute))
@@ -87,7 +87,8 @@ def test_the_robots_answer_to_what_it_was_sent_finishes_the_state() -> None:
     supervisor = _started(SupervisedRobot("talos", frozenset(Side), step_duration=1.5))
     request = _walk_request(supervisor)
     path = Path(poses=[PoseStamped()])
-    supervisor.proposal("footsteps", 7, path, t(2.0))
+    path.header.stamp = time_msg_of_ns(7)
+    supervisor.proposal("footsteps", path, t(2.0))
     outcome = PlanningOutcome(request.request_id, OutcomeStatus.SUCCESS, details={"stamp_ns": 7})
     execute = next(a for a in supervisor.planning_outcome("footsteps", encode(outcome), t(3.0))
                    if isinstance(a, act.Execute))

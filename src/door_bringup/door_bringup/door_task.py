@@ -76,11 +76,12 @@ class TaskOptions:
     def node_overrides(self) -> dict[str, list[str]]:
         """``-p name:=value`` arguments per node; the robot goes to every node that declares
         ``robot_profile``."""
-        sim = {"door_opening": self.opening, "hinge_side": self.hinge, "seed": self.seed,
-               "stance_distance": self.distance, "stance_lateral": self.lateral, "stance_yaw": self.yaw,
-               "depth_noise": self.depth_noise, "wind_amplitude": self.wind, "door_width": self.door_width,
-               "handle_height": self.handle_height, "camera_rate": self.camera_rate}
-        fsm = {"opening": self.opening, "autonomy": self.autonomy, "backend": self.backend}
+        sim: dict[str, object] = {
+            "door_opening": self.opening, "hinge_side": self.hinge, "seed": self.seed,
+            "stance_distance": self.distance, "stance_lateral": self.lateral, "stance_yaw": self.yaw,
+            "depth_noise": self.depth_noise, "wind_amplitude": self.wind, "door_width": self.door_width,
+            "handle_height": self.handle_height, "camera_rate": self.camera_rate}
+        fsm: dict[str, object] = {"opening": self.opening, "autonomy": self.autonomy, "backend": self.backend}
         own: dict[str, dict[str, object]] = {
             "sim_bridge": sim, "fsm_supervisor": fsm,
             "foxglove_bridge": {} if self.foxglove_port is None else {"port": self.foxglove_port}}
@@ -105,7 +106,9 @@ class ScriptedOperator(Node):
 
     def __init__(self, approve: bool) -> None:
         super().__init__("door_task_operator")
-        self.approve, self.report, self.states = approve, None, []
+        self.approve = approve
+        self.report: TaskReport | None = None
+        self.states: list[str] = []
         self.base_xy: tuple[float, float] | None = None
         create_contract_subscription(self, Topics.ODOM, self._on_odom)
         self.command_pub = create_contract_publisher(self, Topics.OPERATOR)

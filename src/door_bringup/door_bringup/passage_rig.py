@@ -123,7 +123,7 @@ def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstim
         side = hand.other if step is Motion.BLOCK_DOOR else hand
         setup = motion_setup(world, kinematics, estimate, side, start_door_for(step, door_angle, library.options))
         plan = library.plan(step, setup, setup.chain.chain_of(setup.chain.body_q), Backend.SQP)
-        if not plan.succeeded:
+        if not plan.succeeded or plan.path is None:
             return step.value, "planning failed", plan.result.message
         result = TrajectoryExecution.from_joint_path(world, plan.path).run()
         if result.status is not OutcomeStatus.SUCCESS:
@@ -143,11 +143,14 @@ def walk_through(world: DoorWorld, estimate: DoorEstimate) -> tuple[str, str, di
     result, _ = WalkPlanners().plan(problem, options_for_problem(problem, WalkGoal.THROUGH, options))
     if not result.succeeded or result.plan is None:
         return "planning failed", f"{result.outcome.value}: {result.reason}", {}
-    execution, peaks = FootstepExecution(world, contract_footsteps(problem.start, result.plan)), {}
+    execution = FootstepExecution(world, contract_footsteps(problem.start, result.plan))
+    peaks: dict[str, float] = {}
     while not execution.command():
         world.step()
         for name, force in world.door_contact_forces().items():
             peaks[name] = max(peaks.get(name, 0.0), force)
+    if execution.result is None:  # command() is True once the walk has its result
+        return "failure", "the walk ended without an outcome", peaks
     return execution.result.status.value, execution.result.reason, peaks
 
 

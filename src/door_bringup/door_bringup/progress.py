@@ -9,7 +9,9 @@ printed every ``log_period_s``.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, replace
+from typing import Any
 
 PHASES = ("DETECT_DOOR", "WALK_TO_DOOR", "OPEN_DOOR", "WALK_THROUGH")
 
@@ -24,7 +26,7 @@ class TaskProgress:
     base_xy: tuple[float, float] | None = None
     door_angle: float | None = None  # rad, the angle the FSM's last planning request plans with
 
-    def update(self, **changes) -> TaskProgress:
+    def update(self, **changes: Any) -> TaskProgress:
         return replace(self, **changes)
 
 
@@ -54,7 +56,7 @@ def progress_line(progress: TaskProgress) -> str:
 class ProgressPrinter:
     """Prints the line: in place on a terminal (every call), every ``log_period_s`` otherwise."""
 
-    def __init__(self, write, is_terminal: bool, log_period_s: float = 10.0) -> None:
+    def __init__(self, write: Callable[[str], object], is_terminal: bool, log_period_s: float = 10.0) -> None:
         self._write, self._terminal, self._period = write, is_terminal, log_period_s
         self._last_logged = float("-inf")
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import sys
 import time
+from typing import Any
 
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
@@ -32,7 +33,7 @@ class ProgressMonitor:
         for topic in (Topics.FOOTSTEP_REQUEST, Topics.MOTION_REQUEST):
             create_contract_subscription(node, topic, self._on_request)
 
-    def _set(self, **changes) -> None:
+    def _set(self, **changes: Any) -> None:
         self.progress = self.progress.update(**changes)
 
     def _on_request(self, msg: String) -> None:

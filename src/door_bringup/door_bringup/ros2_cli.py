@@ -77,9 +77,12 @@ def _topic(args: list[str]) -> int:
             if topic not in names:
                 print(f"topic {topic} not found", file=sys.stderr)
                 return 1
-            received = []
-            node.create_subscription(interface_class(names[topic][0]), topic,
-                                     lambda m: (received.append(m), print(m, "\n---", flush=True)), qos_for(topic))
+            received: list[object] = []
+
+            def echo(message: object) -> None:
+                received.append(message)
+                print(message, "\n---", flush=True)
+            node.create_subscription(interface_class(names[topic][0]), topic, echo, qos_for(topic))
             while len(received) < count:
                 rclpy.spin_once(node, timeout_sec=0.1)
         else:

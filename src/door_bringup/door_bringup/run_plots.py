@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -25,11 +26,12 @@ from door_bringup.bags.storage import read_messages  # noqa: E402
 from door_bringup.summary_figure import plot_summary  # noqa: E402
 from door_contract.converters.footsteps import path_to_footsteps  # noqa: E402
 from door_contract.converters.image import image_to_array  # noqa: E402
-from door_contract.topics import Topics  # noqa: E402
+from door_contract.topics import Topics, TopicSpec  # noqa: E402
 from door_contract.vocabulary import Foot
 
 
-def _messages(bag: Path, topic) -> list:
+def _messages(bag: Path, topic: TopicSpec) -> list[Any]:
+    """``topic``'s messages in ``bag``, decoded (ROS 2's generated message classes carry no types)."""
     return [deserialize_message(m.data, topic.msg_class()) for m in read_messages(bag, [topic.name])]
 
 

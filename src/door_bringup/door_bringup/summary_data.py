@@ -19,8 +19,10 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from rclpy.serialization import deserialize_message
@@ -61,16 +63,20 @@ SUMMARY_TOPICS = (Topics.CLOCK, Topics.DOOR_ESTIMATE, Topics.FOOTSTEP_REQUEST, T
                   Topics.FOOTSTEP_PLAN, Topics.DOOR_JOINT_STATES, Topics.ODOM, Topics.FOOT_POSES, Topics.JOINT_STATES)
 
 
-def _decoded_by_topic(bag: Path) -> dict[str, list[tuple[int, object]]]:
+Decoded = list[tuple[int, Any]]
+"""(bag time ns, message) of one topic; ROS 2's generated message classes carry no types."""
+
+
+def _decoded_by_topic(bag: Path) -> dict[str, Decoded]:
     """The summary's topics, decoded, in one pass over the bag (an mcap bag is decompressed once)."""
     classes = {topic.name: topic.msg_class() for topic in SUMMARY_TOPICS}
-    messages: dict[str, list[tuple[int, object]]] = {name: [] for name in classes}
+    messages: dict[str, Decoded] = {name: [] for name in classes}
     for message in read_messages(bag, list(classes)):
         messages[message.topic].append((message.timestamp_ns, deserialize_message(message.data, classes[message.topic])))
     return messages
 
 
-def _sim_time_of(clock: list[tuple[int, object]]):
+def _sim_time_of(clock: Decoded) -> Callable[[int], float]:
     """Bag time (ns) → sim time (s), from the recorded /clock (identity without one)."""
     if not clock:
         return lambda ns: ns * 1e-9
@@ -79,7 +85,7 @@ def _sim_time_of(clock: list[tuple[int, object]]):
     return lambda ns: float(np.interp(ns, stamps, times))
 
 
-def _json_payloads(messages: list[tuple[int, object]]) -> list[dict]:
+def _json_payloads(messages: Decoded) -> list[dict]:
     return [json.loads(msg.data) for _, msg in messages if msg.data]
 
 

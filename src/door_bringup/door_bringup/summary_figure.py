@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import matplotlib
 
@@ -23,12 +24,15 @@ from door_bringup.summary_data import RunSeries, read_run  # noqa: E402
 from door_contract.vocabulary import Foot
 from door_viz.proposals import leaf_axes  # noqa: E402
 
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
 GRASP_DISTANCE_M = 0.02
 FOOT_COLOURS = {Foot.LEFT: "tab:blue", Foot.RIGHT: "tab:orange"}
 HAND_COLOURS = {"left": "tab:blue", "right": "tab:red"}
 
 
-def _top_view(axes, run: RunSeries, foot_size: tuple[float, float]) -> None:
+def _top_view(axes: Axes, run: RunSeries, foot_size: tuple[float, float]) -> None:
     if run.estimate is not None:
         corners = np.array(run.estimate.corners)
         axes.plot(corners[:2, 0], corners[:2, 1], "k-", linewidth=4, label="door (estimate, closed)")
@@ -51,7 +55,7 @@ def _top_view(axes, run: RunSeries, foot_size: tuple[float, float]) -> None:
     axes.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
 
 
-def _state_bands(axes, run: RunSeries, end: float) -> None:
+def _state_bands(axes: Axes, run: RunSeries, end: float) -> None:
     """The FSM's states as shaded bands, labelled once each."""
     changes = run.states + [(end, "")]
     for index, ((start, state), (stop, _)) in enumerate(zip(changes[:-1], changes[1:])):
@@ -61,14 +65,14 @@ def _state_bands(axes, run: RunSeries, end: float) -> None:
                       rotation=90, fontsize=6, va="top", ha="center", alpha=0.8)
 
 
-def _door_angle(axes, run: RunSeries, end: float) -> None:
+def _door_angle(axes: Axes, run: RunSeries, end: float) -> None:
     _state_bands(axes, run, end)
     if len(run.door):
         axes.plot(run.door[:, 0], np.degrees(run.door[:, 1]), "k-")
     axes.set(ylabel="door angle (deg)", title="Door angle (simulated hinge) and the FSM's states")
 
 
-def _hand_distance(axes, run: RunSeries, end: float) -> None:
+def _hand_distance(axes: Axes, run: RunSeries, end: float) -> None:
     _state_bands(axes, run, end)
     for side, series in run.hands.items():
         if len(series):
@@ -78,7 +82,7 @@ def _hand_distance(axes, run: RunSeries, end: float) -> None:
     axes.legend(loc="best", fontsize=7)
 
 
-def _com_margin(axes, run: RunSeries, end: float) -> None:
+def _com_margin(axes: Axes, run: RunSeries, end: float) -> None:
     _state_bands(axes, run, end)
     if len(run.com):
         axes.plot(run.com[:, 0], run.com[:, 3] * 100.0, "m-")
@@ -87,7 +91,7 @@ def _com_margin(axes, run: RunSeries, end: float) -> None:
              title="Centre of mass to the support polygon's edge (+ inside)")
 
 
-def _support_at_smallest_margin(axes, run: RunSeries) -> None:
+def _support_at_smallest_margin(axes: Axes, run: RunSeries) -> None:
     if not len(run.com):
         return
     worst = int(np.argmin(run.com[:, 3]))

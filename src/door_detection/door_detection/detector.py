@@ -28,12 +28,12 @@ from door_detection.estimate import DetectedDoor, DetectionResult
 from door_detection.frame_sync import DroppedFrame
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
-from door_detection.payload import contract_estimate
+from door_detection.payload import NominalDoor, contract_estimate
 from door_detection.scribble import scribble_problem
 from door_detection.voting import Voter
 from door_robot.profile import RobotProfile
 
-__all__ = ["CameraFrame", "DetectorCamera", "DoorDetector", "FrameReport", "NominalDoor"]
+__all__ = ["CameraFrame", "DetectorCamera", "DoorDetector", "FrameReport"]
 
 UP = np.array([0.0, 0.0, 1.0])
 """The world's up in ``odom`` (REP-103: z up)."""
@@ -65,20 +65,6 @@ class DetectorCamera:
         if pose_frame != self.pose_frame:
             return f"camera pose in {pose_frame!r}, expected {self.pose_frame!r}"
         return None
-
-
-@dataclass(frozen=True)
-class NominalDoor:
-    """What the operator-aided mode assumes of the door it does not measure (m)."""
-
-    width: float = 0.914
-    height: float = 2.083
-    grasp_to_free_edge: float = 0.136
-
-    def as_parameters(self) -> dict[str, float]:
-        """The names :func:`door_detection.payload.contract_estimate` reads."""
-        return {"nominal_door_width": self.width, "nominal_door_height": self.height,
-                "grasp_to_free_edge": self.grasp_to_free_edge}
 
 
 @dataclass(frozen=True)
@@ -164,7 +150,7 @@ class DoorDetector:
                                   "values": {"frame_ms": round(result.elapsed * 1000.0, 1),
                                              "mode": result.estimate.mode.value}}
         if vote.ok and vote.estimate is not None:
-            report["confirmed"] = contract_estimate(vote.estimate, frame.stamp, self.nominal.as_parameters())
+            report["confirmed"] = contract_estimate(vote.estimate, frame.stamp, self.nominal)
             report["handle_pose"] = vote.estimate.handle_pose(up=UP)
         return FrameReport(**report)
 

@@ -14,6 +14,7 @@ on /diagnostics with the stream it lacked; a bad scribble is refused at once.
 from __future__ import annotations
 
 import time
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -40,13 +41,14 @@ from door_contract.parameters import require_ordered
 from door_contract.payloads import encode
 from door_contract.stamps import from_time_msg
 from door_contract.topics import Topics, TopicSpec
-from door_detection.detector import CameraFrame, DetectorCamera, DoorDetector, FrameReport, NominalDoor
+from door_detection.detector import CameraFrame, DetectorCamera, DoorDetector, FrameReport
 from door_detection.errors import DetectionError
 from door_detection.frame_sync import STREAMS, FrameSync
 from door_detection.markers import door_markers
 from door_detection.options import DetectionOptions
 from door_detection.overlay import draw_estimate
 from door_detection.parameters import DETECTOR_PARAMETERS, NODE_NAME
+from door_detection.payload import NominalDoor
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
 
@@ -76,7 +78,7 @@ class DoorDetectorNode(Node):
         self.marker_pub, self.debug_pub = pub(Topics.DOOR_MARKERS), pub(Topics.DETECTION_DEBUG_IMAGE)
         for stream, topic in zip(STREAMS, (Topics.COLOR_IMAGE, Topics.DEPTH_IMAGE, Topics.COLOR_INFO,
                                            Topics.CAMERA_POSE)):
-            create_contract_subscription(self, topic, lambda msg, s=stream: self._on_stream(s, msg))
+            create_contract_subscription(self, topic, partial(self._on_stream, stream))
         create_contract_subscription(self, Topics.SCRIBBLE, self._on_scribble)
         self.get_logger().info(f"ready: {camera.robot}'s camera {camera.camera_link}, voting over "
                                f"{p['vote_frames']} frames (confirmed from {p['vote_min_agreeing']} agreeing), "

@@ -133,7 +133,7 @@ class DetectedDoor:
                 continue
             u = np.asarray(u, dtype=float)
             z_axis = u - float(u @ x_axis) * x_axis
-            if np.linalg.norm(z_axis) > 1e-6 * max(np.linalg.norm(u), 1e-12):
+            if np.linalg.norm(z_axis) > 1e-6 * max(float(np.linalg.norm(u)), 1e-12):
                 break
         z_axis = z_axis / np.linalg.norm(z_axis)
         pose = np.eye(4)

@@ -30,6 +30,7 @@ from pathlib import Path
 import cv2
 import numpy as np
 
+from door_detection.errors import InputError
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
 from door_detection.proposals import Box, DoorProposal, iou, propose_doors
@@ -95,9 +96,23 @@ def load_dataset(folder: Path) -> list[LabelledImage]:
         label_file = folder / "labels" / f"{path.stem}.txt"
         if path.suffix.lower() not in (".jpg", ".jpeg", ".png") or not label_file.exists():
             continue
-        shape = cv2.imread(str(path), cv2.IMREAD_COLOR).shape
+        shape = _read_bgr(path).shape
         images.append(LabelledImage(path, tuple(_parse_labels(label_file, shape[1], shape[0]))))
     return images
+
+
+def _read_bgr(path: Path) -> np.ndarray:
+    """The image at ``path`` (BGR), or :class:`InputError` naming it (``cv2.imread`` returns None)."""
+    bgr = cv2.imread(str(path), cv2.IMREAD_COLOR)
+    if bgr is None:
+        raise InputError(f"cannot read the image {path}")
+    return np.asarray(bgr)
+
+
+def _scaled_box(box: Box, scale: float) -> Box:
+    """``box`` (x0, y0, x1, y1 px) of an image scaled by ``scale``, in the original's pixels."""
+    x0, y0, x1, y1 = box
+    return x0 / scale, y0 / scale, x1 / scale, y1 / scale
 
 
 def _parse_labels(path: Path, width: int, height: int) -> list[tuple[int, Box]]:
@@ -121,14 +136,14 @@ class _ImageResult:
 
 def detect_image(image: LabelledImage, threshold: float) -> _ImageResult:
     """Proposals (boxes mapped back to the original pixels) scoring ≥ ``threshold``."""
-    bgr = cv2.imread(str(image.path), cv2.IMREAD_COLOR)
+    bgr = _read_bgr(image.path)
     scale = min(1.0, MAX_SIDE / max(bgr.shape[:2]))
     if scale < 1.0:
         bgr = cv2.resize(bgr, None, fx=scale, fy=scale, interpolation=cv2.INTER_AREA)
     rgb = cv2.cvtColor(bgr, cv2.COLOR_BGR2RGB)
     options = DetectionOptions(min_line_length=MIN_LINE_FRACTION * rgb.shape[0])
-    back = lambda box: None if box is None else tuple(v / scale for v in box)  # noqa: E731
-    proposals = tuple(DoorProposal(back(p.box), p.corners / scale, p.score, back(p.handle_box))
+    proposals = tuple(DoorProposal(_scaled_box(p.box, scale), p.corners / scale, p.score,
+                                   None if p.handle_box is None else _scaled_box(p.handle_box, scale))
                       for p in propose_doors(rgb, options) if p.score >= threshold)
     return _ImageResult(image, proposals)
 

@@ -16,16 +16,20 @@ On TALOS this gives pan = ``head_2_joint`` (axis z, ±1.31 rad) and tilt = ``hea
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from door_detection.view_search import Neck, NeckAxis
 
+if TYPE_CHECKING:  # Pinocchio is imported only by the caller that builds the kinematics
+    from door_robot.kinematics import RobotKinematics
+
 AXIS_TOLERANCE_DEG = 15.0
 """Largest angle between a neck joint's axis and the base's z (pan) or y (tilt)."""
 
 
-def neck_of(kinematics: object) -> Neck:
+def neck_of(kinematics: RobotKinematics) -> Neck:
     """The :class:`Neck` of a :class:`door_robot.kinematics.RobotKinematics`."""
     profile = kinematics.profile
     q = kinematics.walking_q
@@ -39,7 +43,7 @@ def neck_of(kinematics: object) -> Neck:
     return Neck(_axis(kinematics, moving, nearest_first, 2), _axis(kinematics, moving, nearest_first, 1))
 
 
-def _axis(kinematics: object, axes: dict[str, np.ndarray], names: list[str], component: int) -> NeckAxis | None:
+def _axis(kinematics: RobotKinematics, axes: dict[str, np.ndarray], names: list[str], component: int) -> NeckAxis | None:
     limit = math.cos(math.radians(AXIS_TOLERANCE_DEG))
     for name in names:
         axis = axes[name] / np.linalg.norm(axes[name])

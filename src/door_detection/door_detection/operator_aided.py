@@ -120,7 +120,7 @@ def _seed_mask(points: np.ndarray, shape: tuple[int, int], dilation: int) -> np.
     cv2.polylines(mask, [pixels], isClosed=len(points) >= 3, color=1, thickness=1)
     if dilation > 0:
         kernel = cv2.getStructuringElement(cv2.MORPH_ELLIPSE, (2 * dilation + 1, 2 * dilation + 1))
-        mask = cv2.dilate(mask, kernel)
+        return np.asarray(cv2.dilate(mask, kernel)).astype(bool)
     return mask.astype(bool)
 
 

@@ -1,10 +1,10 @@
 """Printing detection results in the form of [Banerjee 2015]'s Table II.
 
-An *outcome* is any object with ``scenario.distance`` (m), ``scenario.yaw`` (rad) and, per
-mode ("automatic", "operator"), an attribute of that name with ``success`` (bool),
-``handle_error`` (m, NaN when nothing was detected), ``normal_error`` (deg), ``outcome``
-(the failure's name) and ``seconds`` (detection wall time per frame); a *grid* has
-``distances`` and ``yaws``. Both evaluations (single frames, :mod:`door_evaluation.detection.evaluate_sim`;
+An *outcome* (:class:`Outcome`) is any object with ``scenario.distance`` (m), ``scenario.yaw``
+(rad) and, per mode ("automatic", "operator"), an attribute of that name (:class:`ModeResult`)
+with ``success`` (bool), ``handle_error`` (m, NaN when nothing was detected), ``normal_error``
+(deg), ``outcome`` (the failure's name) and ``seconds`` (detection wall time per frame); a
+*grid* (:class:`Grid`) has ``distances`` and ``yaws``. Both evaluations (single frames, :mod:`door_evaluation.detection.evaluate_sim`;
 the head search, :mod:`door_evaluation.detection.table_two`) print through these functions.
 """
 
@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Protocol
 
 import numpy as np
 
@@ -32,21 +33,65 @@ PAPER_TABLE_II = (
 """[Banerjee 2015] Table II: distance, automatic orientation range and result, operator-aided."""
 
 
-def mode_of(outcome: object, mode: str) -> object:
+class Placed(Protocol):
+    """Where a scene was seen from."""
+
+    @property
+    def distance(self) -> float: ...  # m
+    @property
+    def yaw(self) -> float: ...  # rad
+
+
+class ModeResult(Protocol):
+    """One mode's result on one scene."""
+
+    @property
+    def success(self) -> bool: ...
+    @property
+    def handle_error(self) -> float: ...  # m, NaN when nothing was detected
+    @property
+    def normal_error(self) -> float: ...  # deg
+    @property
+    def outcome(self) -> str: ...
+    @property
+    def seconds(self) -> float: ...
+
+
+class Outcome(Protocol):
+    """A scene and, per mode of :data:`MODES`, its :class:`ModeResult`."""
+
+    @property
+    def scenario(self) -> Placed: ...
+    @property
+    def automatic(self) -> ModeResult: ...
+    @property
+    def operator(self) -> ModeResult: ...
+
+
+class Grid(Protocol):
+    @property
+    def distances(self) -> tuple[float, ...]: ...
+    @property
+    def yaws(self) -> tuple[float, ...]: ...
+
+
+def mode_of(outcome: Outcome, mode: str) -> ModeResult:
     """The per-mode result of an outcome."""
-    return getattr(outcome, mode)
+    if mode not in MODES:
+        raise KeyError(f"mode {mode!r} is not one of {MODES}")
+    return outcome.automatic if mode == "automatic" else outcome.operator
 
 
-def _cell(outcomes: Sequence[object], mode: str, distance: float, yaw: float) -> list[object]:
+def _cell(outcomes: Sequence[Outcome], mode: str, distance: float, yaw: float) -> list[ModeResult]:
     return [mode_of(o, mode) for o in outcomes if o.scenario.distance == distance and o.scenario.yaw == yaw]
 
 
-def rate(modes: Sequence[object]) -> float:
+def rate(modes: Sequence[ModeResult]) -> float:
     """Fraction of successes (0 for none)."""
     return sum(m.success for m in modes) / max(len(modes), 1)
 
 
-def orientation_range(outcomes: Sequence[object], mode: str, grid: object, distance: float,
+def orientation_range(outcomes: Sequence[Outcome], mode: str, grid: Grid, distance: float,
                       threshold: float = 1.0) -> str:
     """The paper's "orientation range" of one distance: the angles from the smallest to the
     largest whose cells reach ``threshold`` ("-" when none does)."""
@@ -54,7 +99,7 @@ def orientation_range(outcomes: Sequence[object], mode: str, grid: object, dista
     return f"{min(good):+.1f} to {max(good):+.1f}" if good else "-"
 
 
-def success_table(outcomes: Sequence[object], mode: str, grid: object) -> str:
+def success_table(outcomes: Sequence[Outcome], mode: str, grid: Grid) -> str:
     """Rows: distances; columns: angle bins (successes/scenes); then the paper-style range
     of angles where every scene succeeded and the row's success rate."""
     per_cell = max(len(_cell(outcomes, mode, d, y)) for d in grid.distances for y in grid.yaws)
@@ -73,7 +118,7 @@ def success_table(outcomes: Sequence[object], mode: str, grid: object) -> str:
     return "\n".join(lines)
 
 
-def paper_form(outcomes: Sequence[object], grid: object) -> str:
+def paper_form(outcomes: Sequence[Outcome], grid: Grid) -> str:
     """Ours in the layout of [Banerjee 2015] Table II: per distance, each mode's orientation range
     (cells at ≥ 98 %) and result (success when every cell of the row reaches 98 %)."""
     lines = ["distance | automatic: orientation (rad), result, rate | operator-aided: orientation (rad), result, rate"]
@@ -89,13 +134,13 @@ def paper_form(outcomes: Sequence[object], grid: object) -> str:
     return "\n".join(lines)
 
 
-def worst_cell(outcomes: Sequence[object], mode: str, grid: object) -> tuple[float, float, float]:
+def worst_cell(outcomes: Sequence[Outcome], mode: str, grid: Grid) -> tuple[float, float, float]:
     """(rate, distance, yaw) of the cell with the lowest success rate."""
     cells = [(rate(cell), d, y) for d in grid.distances for y in grid.yaws if (cell := _cell(outcomes, mode, d, y))]
     return min(cells)
 
 
-def summary(outcomes: Sequence[object], mode: str) -> str:
+def summary(outcomes: Sequence[Outcome], mode: str) -> str:
     """Overall success, error percentiles of detected frames, failures, time per frame."""
     modes = [mode_of(o, mode) for o in outcomes]
     detected = [m for m in modes if math.isfinite(m.handle_error)]

@@ -125,10 +125,11 @@ class ViewSearchOptions:
         for name, value, low, high in checks:
             if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
                 raise DetectionError(f"{name} = {value!r} must be an integer in [{low}, {high}]")
-        for name, value, low, high in (("pan_step", self.pan_step, 1e-3, math.pi), ("max_pan", self.max_pan, 0.0, math.pi),
-                                       ("body_turn_step", self.body_turn_step, 1e-3, math.pi)):
-            if not low <= value <= high:
-                raise DetectionError(f"{name} = {value!r} rad must be in [{low:g}, {high:.4g}]")
+        angles = (("pan_step", self.pan_step, 1e-3, math.pi), ("max_pan", self.max_pan, 0.0, math.pi),
+                  ("body_turn_step", self.body_turn_step, 1e-3, math.pi))
+        for name, angle, lowest, highest in angles:
+            if not lowest <= angle <= highest:
+                raise DetectionError(f"{name} = {angle!r} rad must be in [{lowest:g}, {highest:.4g}]")
         if not all(math.isfinite(t) and abs(t) <= math.pi / 2 for t in self.tilt_offsets):
             raise DetectionError(f"tilt_offsets {self.tilt_offsets!r} must be finite, within ±π/2 rad")
 

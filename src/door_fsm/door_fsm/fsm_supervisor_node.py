@@ -9,6 +9,7 @@ steady clock, executions on the node's ROS clock (sim time under ``use_sim_time`
 from __future__ import annotations
 
 from collections.abc import Callable
+from functools import partial
 from typing import Any
 
 from nav_msgs.msg import Path
@@ -29,8 +30,8 @@ from door_contract.node_support import (
     node_main,
 )
 from door_contract.payloads import PlanningCancel, encode
-from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
-from door_contract.topics import Topics
+from door_contract.stamps import UniqueStamps, time_msg_of_ns
+from door_contract.topics import Topics, TopicSpec
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.machine import MachineOptionsError
@@ -76,14 +77,16 @@ class FsmSupervisorNode(Node):
     def _subscribe(self) -> None:
         """Every input goes to the core with the time now; a bad one comes back as a Notice."""
         core = self.core
+
+        def feed(topic: TopicSpec, take: Callable[[Any, Instant], list[act.Action]], text: bool = True) -> None:
+            create_contract_subscription(self, topic, lambda msg: self._run(take(msg.data if text else msg,
+                                                                                 self._now())))
         for kind, (_, proposal, outcome, _) in KINDS.items():
-            create_contract_subscription(self, proposal, lambda m, k=kind: self._run(
-                core.proposal(k, stamp_ns(m.header.stamp), m, self._now())))
-            create_contract_subscription(self, outcome, lambda m, k=kind: self._run(
-                core.planning_outcome(k, m.data, self._now())))
-        for topic, take in ((Topics.DOOR_ESTIMATE, core.door_estimate), (Topics.EXECUTION_OUTCOME,
-                            core.execution_outcome), (Topics.OPERATOR, self._operator)):
-            create_contract_subscription(self, topic, lambda m, t=take: self._run(t(m.data, self._now())))
+            feed(proposal, partial(core.proposal, kind), text=False)
+            feed(outcome, partial(core.planning_outcome, kind))
+        feed(Topics.DOOR_ESTIMATE, core.door_estimate)
+        feed(Topics.EXECUTION_OUTCOME, core.execution_outcome)
+        feed(Topics.OPERATOR, self._operator)
 
     def _now(self) -> Instant:
         return Instant(self.steady.now().nanoseconds * 1e-9, self.get_clock().now().nanoseconds * 1e-9)

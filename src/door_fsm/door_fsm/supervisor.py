@@ -30,6 +30,7 @@ from door_contract.payloads import (
     TaskReport,
     decode,
 )
+from door_contract.stamps import stamp_ns
 from door_contract.topics import Services, ServiceSpec
 from door_contract.vocabulary import DoorOpening, Side
 from door_fsm import actions as act
@@ -103,9 +104,9 @@ class Supervisor:
         self.door.approved = estimate
         return self.handle(ev.ProposalReady(request, door_summary(estimate)), now)
 
-    def proposal(self, kind: str, stamp_ns: int, message: Any, now: Instant) -> list[act.Action]:
-        """A planner's proposal message (a Path or JointTrajectory, stamped ``stamp_ns``)."""
-        return self._answer(self.exchange.add_message(kind, stamp_ns, message), now)
+    def proposal(self, kind: str, message: Any, now: Instant) -> list[act.Action]:
+        """A planner's proposal message (a Path or JointTrajectory), known by its stamp."""
+        return self._answer(self.exchange.add_message(kind, stamp_ns(message.header.stamp), message), now)
 
     def planning_outcome(self, kind: str, text: str, now: Instant) -> list[act.Action]:
         """A planner's PlanningOutcome payload."""

@@ -16,9 +16,11 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
 from rclpy.node import Node
+from rclpy.subscription import Subscription
 
 from door_bringup.bags.exit_codes import exit_code_for
 from door_bringup.bags.player import qos_for
@@ -36,7 +38,7 @@ class BagRecorder(Node):
         super().__init__("bag_recorder")
         self.writer = writer
         self.wanted = set(topics) if topics else None
-        self.subscriptions_by_topic = {}
+        self.subscriptions_by_topic: dict[str, Subscription] = {}
         self.count = 0
         self.heartbeat = Heartbeat(self, period_s=0.5)
         self.discover()
@@ -59,7 +61,7 @@ class BagRecorder(Node):
                 msg_type, topic, self._writer_for(topic, types[0]), matching_subscription(offered, qos_for(topic)),
                 raw=True)
 
-    def _writer_for(self, topic: str, type_name: str):
+    def _writer_for(self, topic: str, type_name: str) -> Callable[[bytes], None]:
         def write(data: bytes) -> None:
             self.writer.write(topic, type_name, self.get_clock().now().nanoseconds, data)
             self.count += 1

@@ -20,7 +20,7 @@ from enum import Enum
 from pathlib import Path
 
 import yaml
-from rosbags.interfaces import Qos
+from rosbags.interfaces import Connection, Qos
 from rosbags.rosbag2 import ReaderError, StoragePlugin, Writer, WriterError
 from rosbags.rosbag2.enums import CompressionFormat, CompressionMode
 from rosbags.rosbag2.metadata import parse_qos
@@ -118,7 +118,8 @@ def recorded_qos(bag: Path | str) -> dict[str, list[Qos]]:
 def _sqlite_messages(path: Path, topics: set[str] | None) -> Iterator[BagMessage]:
     # immutable=1: a read-only file system and no -shm/-wal side files next to the bag
     connection = sqlite3.connect(f"file:{path}?immutable=1", uri=True)
-    where, names = "", ()
+    where = ""
+    names: tuple[str, ...] = ()
     if topics is not None:  # filtered in SQL: a run's bag holds ~400 MB of images
         names = tuple(sorted(topics))
         where = f"WHERE topics.name IN ({', '.join('?' * len(names))}) "
@@ -188,7 +189,7 @@ class BagWriter:
         if compression is Compression.ZSTD:
             self._writer.set_compression(CompressionMode.STORAGE, CompressionFormat.ZSTD)
         self._typestore = get_typestore(Stores.ROS2_JAZZY)
-        self._connections: dict[str, object] = {}
+        self._connections: dict[str, Connection] = {}
         try:
             self._writer.open()
         except (OSError, WriterError) as error:
@@ -199,8 +200,11 @@ class BagWriter:
         """rosbags writes ``ros_distro: rosbags``; the copy of metadata.yaml that the storage
         file keeps (sqlite table, mcap record) gets Jazzy's, as rosbag2 itself writes."""
         storage = self._writer.storage
+        if storage is None:  # open() makes it
+            raise BagWriteError(f"{self.path}: the bag's storage is not open")
         close = storage.close
-        storage.close = lambda version, metadata: close(version, _jazzy(metadata))
+        # an instance attribute over the plugin's method: rosbags has no hook for the metadata it stores
+        storage.close = lambda version, metadata: close(version, _jazzy(metadata))  # type: ignore[method-assign]
 
     def add_topic(self, topic: str, type_name: str, offered_qos: Iterable[Qos] = ()) -> None:
         """Declare ``topic`` with the QoS profiles its publishers offer (before its first message)."""

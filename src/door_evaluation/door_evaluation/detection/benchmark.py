@@ -21,6 +21,7 @@ import cv2
 import numpy as np
 
 from door_detection.automatic import detect_automatic
+from door_detection.errors import InputError
 from door_detection.estimate import DetectionResult
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
@@ -65,12 +66,14 @@ def time_detector(run: Callable[[], DetectionResult], repeats: int, label: str) 
 
 def benchmark_scene(frame: SceneFrame, options: DetectionOptions, repeats: int) -> tuple[Timing, Timing]:
     """Automatic and operator-aided timings on one rendered frame."""
-    s = frame.scenario
+    s, scribble = frame.scenario, frame.scribble
     name = f"{s.distance:.1f} m, {s.yaw:+.1f} rad, k={s.depth_noise:g}"
+    if scribble is None:
+        raise InputError(f"{name}: the lever is not in view, there is nothing to scribble on")
     automatic = time_detector(lambda: detect_automatic(frame.rgb, frame.depth, frame.intrinsics, options),
                               repeats, name)
     operator = time_detector(lambda: detect_from_scribble(frame.rgb, frame.depth, frame.intrinsics,
-                                                          frame.scribble, options, s.hinge_side, frame.up),
+                                                          scribble, options, s.hinge_side, frame.up),
                              repeats, name)
     return automatic, operator
 

@@ -57,7 +57,7 @@ class EvaluationGrid:
     def scenarios(self) -> list[Scenario]:
         """Every scenario, in a deterministic order."""
         pairs = list(itertools.product(DOOR_COLOURS, HANDLE_COLOURS))
-        out = []
+        out: list[Scenario] = []
         for index, (distance, yaw, noise) in enumerate(itertools.product(self.distances, self.yaws, self.noises)):
             chosen = pairs if self.all_colours else [pairs[index % len(pairs)]]
             for k, ((_, door), (_, handle)) in enumerate(chosen):

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -28,6 +29,10 @@ from door_detection.options import DetectionOptions
 from door_detection.view_search import Neck, SearchStep, View, ViewSearch, ViewSearchOptions, plan_views
 from door_detection.voting import Voter
 from door_evaluation.detection.sim_scenes import lever_corners, synthetic_scribble
+
+if TYPE_CHECKING:  # the caller builds the world (and imports the sim)
+    from door_sim_bridge.world import DoorWorld
+    from door_sim_bridge.world.camera import CameraFrame
 
 
 @dataclass(frozen=True)
@@ -55,7 +60,7 @@ class SearchOutcome:
     frame_seconds: tuple[float, ...]
 
 
-def home_view(world: object, neck: Neck) -> View:
+def home_view(world: DoorWorld, neck: Neck) -> View:
     """The view the robot has now (its neck joints' look angles)."""
     joints = world.joint_positions()
     pan = neck.pan.look(joints[neck.pan.joint]) if neck.pan is not None else 0.0
@@ -63,7 +68,7 @@ def home_view(world: object, neck: Neck) -> View:
     return View(pan, tilt, 0.0)
 
 
-def run_search(world: object, neck: Neck, mode: DetectionMode = DetectionMode.AUTOMATIC,
+def run_search(world: DoorWorld, neck: Neck, mode: DetectionMode = DetectionMode.AUTOMATIC,
                options: DetectionOptions | None = None, search_options: ViewSearchOptions | None = None,
                settings: SearchSettings | None = None, seed: int = 0) -> SearchOutcome:
     """Search for the door from the world's current state (see the module docstring)."""
@@ -71,7 +76,8 @@ def run_search(world: object, neck: Neck, mode: DetectionMode = DetectionMode.AU
     search = ViewSearch(plan_views(neck, home_view(world, neck), search_options), search_options)
     voter, rng = Voter(opts), np.random.default_rng(seed)
     start, start_base = world.time, world.base_pose()
-    frames, seconds, views = 0, [], 0
+    frames, views = 0, 0
+    seconds: list[float] = []
     while (view := search.view) is not None:
         _look(world, neck, view, start_base, timing)
         views += 1
@@ -80,7 +86,8 @@ def run_search(world: object, neck: Neck, mode: DetectionMode = DetectionMode.AU
             frame = world.render()
             result = _detect(frame, mode, scribble, opts, world)
             frames, seconds = frames + 1, seconds + [result.elapsed]
-            vote = voter.add(result.estimate.transformed(frame.camera_pose) if result.ok else None)
+            seen = result.estimate if result.ok else None
+            vote = voter.add(seen.transformed(frame.camera_pose) if seen is not None else None)
             step = search.after_frame(result.ok, vote.ok)
             if step is SearchStep.CONFIRMED:
                 return SearchOutcome(vote.estimate, frames, views, frame.time - start, tuple(seconds))
@@ -90,11 +97,11 @@ def run_search(world: object, neck: Neck, mode: DetectionMode = DetectionMode.AU
     return SearchOutcome(None, frames, views, world.time - start, tuple(seconds))
 
 
-def _steps(world: object, seconds: float) -> int:
+def _steps(world: DoorWorld, seconds: float) -> int:
     return max(int(round(seconds * world.config.physics_rate)), 1)
 
 
-def _look(world: object, neck: Neck, view: View, start_base: np.ndarray, timing: SearchSettings) -> None:
+def _look(world: DoorWorld, neck: Neck, view: View, start_base: np.ndarray, timing: SearchSettings) -> None:
     """Turn the body to the view's yaw (if it differs) and the neck to its targets; step until
     the neck joints settle."""
     turned = start_base.copy()
@@ -118,7 +125,7 @@ def _look(world: object, neck: Neck, view: View, start_base: np.ndarray, timing:
         waited += period
 
 
-def operator_scribble(world: object, rng: np.random.Generator) -> np.ndarray | None:
+def operator_scribble(world: DoorWorld, rng: np.random.Generator) -> np.ndarray | None:
     """The operator's scribble on the lever when all of it projects into the image."""
     pose = world.camera.pose()
     points = (lever_corners(world) - pose[:3, 3]) @ pose[:3, :3]
@@ -131,8 +138,8 @@ def operator_scribble(world: object, rng: np.random.Generator) -> np.ndarray | N
     return synthetic_scribble(pixels, intrinsics, rng, 2.0) if inside.all() else None
 
 
-def _detect(frame: object, mode: DetectionMode, scribble: np.ndarray | None, options: DetectionOptions,
-            world: object) -> DetectionResult:
+def _detect(frame: CameraFrame, mode: DetectionMode, scribble: np.ndarray | None, options: DetectionOptions,
+            world: DoorWorld) -> DetectionResult:
     if mode is DetectionMode.AUTOMATIC:
         return detect_automatic(frame.rgb, frame.depth, frame.intrinsics, options)
     if scribble is None:

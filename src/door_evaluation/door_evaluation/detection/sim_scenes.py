@@ -18,11 +18,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
 from door_contract.vocabulary import Side
+
+if TYPE_CHECKING:  # the sim is imported where a world is built, not with this module
+    from door_sim_bridge.world import DoorWorld, WorldConfig
 
 CAMERA_WIDTH = 1024
 CAMERA_HEIGHT = 544
@@ -94,7 +98,7 @@ def render_scenario(scenario: Scenario, scribble_noise_px: float = 2.0) -> Scene
     return SceneFrame(scenario, frame.rgb, frame.depth, frame.intrinsics, handle, normal, scribble, up)
 
 
-def _world_config(scenario: Scenario) -> object:
+def _world_config(scenario: Scenario) -> WorldConfig:
     from door_sim_bridge.world import CameraConfig, DoorConfig, RobotVisuals, StanceConfig, WorldConfig
 
     door = DoorConfig(hinge_side=scenario.hinge_side, door_colour=scenario.door_colour,
@@ -110,7 +114,7 @@ def _world_config(scenario: Scenario) -> object:
     return WorldConfig(door=door, stance=stance, camera=camera, seed=scenario.seed)
 
 
-def lever_corners(world: object) -> np.ndarray:
+def lever_corners(world: DoorWorld) -> np.ndarray:
     """The 8 corners (odom) of the lever bar, from the door's geometry (evaluation only)."""
     from door_sim_bridge.world import DoorPart
     from door_sim_bridge.world.door import LEVER_SECTION

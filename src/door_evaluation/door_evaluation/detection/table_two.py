@@ -17,7 +17,7 @@ import contextlib
 import functools
 import math
 import multiprocessing
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -112,13 +112,16 @@ def run_trial(scene: TrialScene, neck: Neck, options: DetectionOptions | None = 
 
 
 def run_table(grid: TableTwoGrid, neck: Neck, progress: bool = True, jobs: int = 1,
-              **kwargs: object) -> list[TrialResult]:
+              options: DetectionOptions | None = None, search_options: ViewSearchOptions | None = None,
+              settings: SearchSettings | None = None) -> list[TrialResult]:
     """Every trial of the grid, in ``jobs`` processes (each trial builds its own world), in the
     grid's order; a progress bar on stderr shows the running automatic success rate."""
     scenes = grid.scenes()
     bar = ProgressBar(len(scenes), enabled=progress)
-    trial = functools.partial(run_trial, neck=neck, **kwargs)
+    trial = functools.partial(run_trial, neck=neck, options=options, search_options=search_options,
+                              settings=settings)
     results: list[TrialResult] = []
+    outcomes: Iterator[TrialResult]
     with contextlib.ExitStack() as stack:
         if jobs > 1:
             pool = stack.enter_context(multiprocessing.get_context("spawn").Pool(jobs))

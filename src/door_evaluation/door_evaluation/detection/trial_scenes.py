@@ -16,10 +16,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from door_contract.vocabulary import DoorOpening, HingeSide
+
+if TYPE_CHECKING:  # the sim is imported where a world is built, not with this module
+    from door_sim_bridge.world import WorldConfig
 
 Colour = tuple[float, float, float]
 
@@ -93,7 +97,7 @@ def random_scene(distance: float, yaw: float, rng: np.random.Generator, seed: in
                       float(rng.uniform(0.0, max_depth_noise)), random_appearance(rng), seed)
 
 
-def world_config(scene: TrialScene) -> object:
+def world_config(scene: TrialScene) -> WorldConfig:
     """The sim core's WorldConfig of a scene: the sim bridge's camera and robot visuals, on the
     kinematic robot (:class:`~door_sim_bridge.world.config.RobotMode`): the search turns the body
     in place by placing the base (:mod:`door_evaluation.detection.search_trial`), which the physical robot
