@@ -7,6 +7,8 @@ ROS-free core (no rclpy); the node ``door_detector_node`` wraps it.  Public API:
 * :func:`door_detection.operator_aided.detect_from_scribble` (rgb, depth, intrinsics,
   scribble, options, hinge_side, up) → ``DetectionResult`` — Sec. III-B;
 * :class:`door_detection.voting.Voter` — the N-frame vote;
+* :class:`door_detection.detector.DoorDetector` — what the node does between messages: a
+  decoded frame in, detection (automatic or after a scribble), vote, the estimate to publish;
 * :class:`door_detection.estimate.DetectedDoor` (camera optical frame; ``handle_pose()``,
   ``transformed()``), :class:`~door_detection.estimate.DetectionOutcome`,
   :class:`~door_detection.options.DetectionOptions`.
