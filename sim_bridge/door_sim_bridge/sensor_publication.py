@@ -32,22 +32,22 @@ from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT
 
 __all__ = ["SensorPublication"]
 
-TOPICS = ("CLOCK", "JOINT_STATES", "ODOM", "COLOR_IMAGE", "COLOR_INFO", "DEPTH_IMAGE", "DEPTH_INFO",
-          "CAMERA_POSE", "DOOR_JOINT_STATES", "FOOT_POSES")
-"""The contract topics (:class:`~door_contract.topics.Topics` names) published here."""
+TOPICS = (Topics.CLOCK, Topics.JOINT_STATES, Topics.ODOM, Topics.COLOR_IMAGE, Topics.COLOR_INFO, Topics.DEPTH_IMAGE,
+          Topics.DEPTH_INFO, Topics.CAMERA_POSE, Topics.DOOR_JOINT_STATES, Topics.FOOT_POSES)
+"""The contract topics published here."""
 
 
 class SensorPublication:
     def __init__(self, node: Node, world: DoorWorld, mesh_uris: MeshUris) -> None:
         self.world = world
-        self.publishers = {name: create_contract_publisher(node, getattr(Topics, name)) for name in TOPICS}
+        self.publishers = {topic: create_contract_publisher(node, topic) for topic in TOPICS}
         self.base_velocity = BaseVelocity()
         self.robot_state = RobotStatePublication(node, world, mesh_uris, world.time)
 
     def publish(self, now: float, streams: tuple[Stream, ...]) -> None:
         """Publish ``streams`` at simulated time ``now`` (s)."""
         if Stream.CLOCK in streams:
-            self.publishers["CLOCK"].publish(Clock(clock=to_time_msg(now)))
+            self.publishers[Topics.CLOCK].publish(Clock(clock=to_time_msg(now)))
         if Stream.STATE in streams:
             self._publish_state(now)
         if Stream.TF in streams:
@@ -57,8 +57,9 @@ class SensorPublication:
 
     def _publish_state(self, now: float) -> None:
         states = self.world.joint_states()
-        self.publishers["JOINT_STATES"].publish(positions_to_joint_state(
-            dict(zip(states.names, states.positions)), stamp=now, velocities=dict(zip(states.names, states.velocities))))
+        self.publishers[Topics.JOINT_STATES].publish(positions_to_joint_state(
+            dict(zip(states.names, states.positions)), stamp=now,
+            velocities=dict(zip(states.names, states.velocities))))
         base = self.world.base_pose()
         odom = Odometry()
         odom.header.stamp, odom.header.frame_id = to_time_msg(now), Frame.ODOM.value
@@ -66,12 +67,13 @@ class SensorPublication:
         odom.pose.pose = matrix_to_pose(base)
         velocity = self.base_velocity.update(now, base)
         if velocity is not None:
-            odom.twist.twist.linear.x, odom.twist.twist.linear.y, odom.twist.twist.linear.z = (float(v) for v in velocity)
-        self.publishers["ODOM"].publish(odom)
+            linear = odom.twist.twist.linear
+            linear.x, linear.y, linear.z = (float(v) for v in velocity)
+        self.publishers[Topics.ODOM].publish(odom)
         feet = self.world.foot_placements()
-        self.publishers["FOOT_POSES"].publish(footsteps_to_path([feet[Foot.LEFT], feet[Foot.RIGHT]], now))
+        self.publishers[Topics.FOOT_POSES].publish(footsteps_to_path([feet[Foot.LEFT], feet[Foot.RIGHT]], now))
         door = self.world.door_state()
-        self.publishers["DOOR_JOINT_STATES"].publish(positions_to_joint_state(
+        self.publishers[Topics.DOOR_JOINT_STATES].publish(positions_to_joint_state(
             {HINGE_JOINT: door.hinge_angle, HANDLE_JOINT: door.handle_angle}, stamp=now,
             velocities={HINGE_JOINT: door.hinge_velocity, HANDLE_JOINT: door.handle_velocity}))
 
@@ -80,9 +82,10 @@ class SensorPublication:
         frame_id = Frame.HEAD_CAMERA_OPTICAL.value
         info = intrinsics_to_camera_info(frame.intrinsics, frame_id, frame.time)
         depth = np.where(np.isfinite(frame.depth), frame.depth, np.nan).astype(np.float32)
-        self.publishers["CAMERA_POSE"].publish(matrix_to_pose_stamped(frame.camera_pose, Frame.ODOM.value, frame.time))
-        self.publishers["COLOR_IMAGE"].publish(array_to_image(np.ascontiguousarray(frame.rgb), "rgb8", frame_id,
-                                                              frame.time))
-        self.publishers["COLOR_INFO"].publish(info)
-        self.publishers["DEPTH_IMAGE"].publish(array_to_image(depth, "32FC1", frame_id, frame.time))
-        self.publishers["DEPTH_INFO"].publish(info)
+        camera_pose = matrix_to_pose_stamped(frame.camera_pose, Frame.ODOM.value, frame.time)
+        self.publishers[Topics.CAMERA_POSE].publish(camera_pose)
+        rgb = array_to_image(np.ascontiguousarray(frame.rgb), "rgb8", frame_id, frame.time)
+        self.publishers[Topics.COLOR_IMAGE].publish(rgb)
+        self.publishers[Topics.COLOR_INFO].publish(info)
+        self.publishers[Topics.DEPTH_IMAGE].publish(array_to_image(depth, "32FC1", frame_id, frame.time))
+        self.publishers[Topics.DEPTH_INFO].publish(info)

@@ -58,7 +58,8 @@ class FootstepPlannerNode(Node):
         self.marker_pub = create_contract_publisher(self, Topics.FOOTSTEP_MARKERS)
         self.desk = PlannerDesk(self, self.heartbeat, FootstepRequest, (Topics.FOOTSTEP_REQUEST, Topics.FOOTSTEP_CANCEL),
                                 lambda r: self.inputs.doors.pick(r.door_stamp, r.door), self._job_for,
-                                self._deliver_one, lambda rid, why: self._answer(rid, "?", Answer(OutcomeStatus.REJECTED, why)))
+                                self._deliver_one,
+                                lambda rid, why: self._answer(rid, "?", Answer(OutcomeStatus.REJECTED, why)))
         self.get_logger().info(f"ready: {p['robot_profile']} steps ≤ {options.max_stride} m, "
                                f"heuristic weight {options.heuristic_weight}")
 
