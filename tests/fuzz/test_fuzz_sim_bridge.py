@@ -183,9 +183,10 @@ def test_the_dead_man_stops_everything_when_the_supervisor_falls_silent(bridge):
     refused = _send(bridge, "ARM_TRAJECTORY", joint_path_to_msg(JointPath(np.array([1.0]), (ELBOW,),
                                                                           np.array([[start]]))))
     assert "heartbeat lost" in bridge.wait_answer("execution", refused).reason
-    backs = bridge.process.log.read_text().count("is back")
+    back = "is back: executions accepted"  # not "… refused until it is back", a refusal's reason
+    backs = bridge.process.log.read_text().count(back)
     bridge.supervisor_beating = True  # back: executions are accepted again
-    assert bridge.wait(lambda: bridge.process.log.read_text().count("is back") > backs, 10.0)
+    assert bridge.wait(lambda: bridge.process.log.read_text().count(back) > backs, 10.0)
     accepted = _send(bridge, "ARM_TRAJECTORY", joint_path_to_msg(JointPath(np.array([1.0]), (ELBOW,),
                                                                            np.array([[start]]))))
     assert bridge.wait_answer("execution", accepted).status is OutcomeStatus.SUCCESS

@@ -19,6 +19,7 @@ from door_trajopt.problem import (
     ConstraintKind,
     FloatArray,
     JacobianValue,
+    TrajectoryFunction,
     TrajectoryProblem,
     TrajoptError,
 )
@@ -101,16 +102,17 @@ class ConstraintStack:
         return np.concatenate(parts)
 
     @cached_property
-    def _data_layout(self) -> tuple[sp.csr_matrix, tuple[np.ndarray, ...]] | None:
-        """The stacked free-column pattern and, per block, which of its pattern's entries
-        lie in free columns; ``None`` unless every block gives ``jacobian_data``."""
-        if not self.blocks or any(b.jacobian_data is None for b in self.blocks):
-            return None
-        keep = []
+    def _data_layout(self) -> tuple[sp.csr_matrix, tuple[tuple[TrajectoryFunction, np.ndarray], ...]] | None:
+        """The stacked free-column pattern and, per block, its ``jacobian_data`` and which of
+        its pattern's entries lie in free columns; ``None`` unless every block gives
+        ``jacobian_data`` (a block with it always has a pattern)."""
+        sources = []
         for block in self.blocks:
+            if block.jacobian_data is None or block.pattern is None:
+                return None
             columns = block.pattern.indices
-            keep.append((columns >= self.columns.start) & (columns < self.columns.stop))
-        return self.pattern(), tuple(keep)
+            sources.append((block.jacobian_data, (columns >= self.columns.start) & (columns < self.columns.stop)))
+        return (self.pattern(), tuple(sources)) if sources else None
 
     def jacobian(self, trajectory: FloatArray) -> sp.csr_matrix:
         """Stacked Jacobian w.r.t. the free variables (``k x N`` CSR).
@@ -131,10 +133,10 @@ class ConstraintStack:
         return sp.vstack(parts, format="csr")
 
     def _jacobian_from_data(self, trajectory: FloatArray, pattern: sp.csr_matrix,
-                            keep: tuple[np.ndarray, ...]) -> sp.csr_matrix:
+                            sources: tuple[tuple[TrajectoryFunction, np.ndarray], ...]) -> sp.csr_matrix:
         parts = []
-        for block, inside in zip(self.blocks, keep, strict=True):
-            data = np.asarray(block.jacobian_data(trajectory), dtype=np.float64).reshape(-1)
+        for block, (jacobian_data, inside) in zip(self.blocks, sources, strict=True):
+            data = np.asarray(jacobian_data(trajectory), dtype=np.float64).reshape(-1)
             if data.size != inside.size:
                 raise TrajoptError(f"{block.name}: Jacobian data has {data.size} entries, expected {inside.size}")
             parts.append(data[inside])

@@ -26,6 +26,7 @@ import numpy as np
 
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import rotation_vector
+from door_trajopt.problem import TrajoptError
 
 
 @dataclass(frozen=True)
@@ -110,8 +111,8 @@ def _task_and_null_space_step(jacobian: np.ndarray, error: np.ndarray, pull: np.
 
 def solve_ik_multistart(chain: ArmChain, target: np.ndarray, seeds: list[np.ndarray],
                         options: IkOptions = IkOptions(), mask: np.ndarray | None = None) -> IkResult:
-    """Best of several seeds (first converged one wins)."""
-    best = None
+    """Best of several seeds (first converged one wins); at least one seed."""
+    best: IkResult | None = None
     for seed in seeds:
         result = solve_ik(chain, target, seed, options, mask)
         if result.converged:
@@ -119,4 +120,6 @@ def solve_ik_multistart(chain: ArmChain, target: np.ndarray, seeds: list[np.ndar
         if best is None or result.position_error + 0.1 * result.rotation_error < \
                 best.position_error + 0.1 * best.rotation_error:
             best = result
+    if best is None:
+        raise TrajoptError("solve_ik_multistart needs at least one seed")
     return best

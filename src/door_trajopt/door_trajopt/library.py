@@ -14,6 +14,7 @@ outside the door's stops is refused before any work (:class:`DoorStateOutOfRange
 from __future__ import annotations
 
 import time
+from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 from enum import Enum
 
@@ -71,7 +72,7 @@ class MotionLibrary:
     constraint_tolerance: float = 1e-5  # m / rad: 10 µm on the handle (SQP stalled at ~5 µm once)
     cost_tolerance: float = 1e-6  # relative cost/merit change deemed converged
     seed: int = 0
-    _cache: dict = field(default_factory=dict)  # motion → last feasible trajectory (n, m)
+    _cache: dict[Motion, np.ndarray] = field(default_factory=dict)  # motion → last feasible trajectory (n, m)
 
     def plan(self, motion: Motion, setup: MotionSetup, start_chain: np.ndarray,
              backend: Backend = Backend.SQP, variant: int = 0, attempt: int = 0) -> MotionPlan:
@@ -98,7 +99,8 @@ class MotionLibrary:
                   ChompSolver(built.problem, ChompOptions(max_iterations=iterations,
                                                           constraint_tolerance=self.constraint_tolerance,
                                                           cost_tolerance=self.cost_tolerance)))
-        result, attempts, used_guess = None, 0, None
+        result: OptimizationResult | None = None
+        attempts, used_guess = 0, None
         for guess in self._guesses(motion, built, rng, attempt):  # one solver: its factorisation is reused
             if attempts and time.perf_counter() - started > self.time_budget_s:
                 break
@@ -107,14 +109,17 @@ class MotionLibrary:
             if result.outcome is Outcome.SUCCESS:
                 self._cache[motion] = result.trajectory
                 break
+        if result is None:  # not reached: the first guess is always tried
+            raise TrajoptError(f"{motion.value}: no initial guess was tried")
         k = built.chain.size
         path = None
         if result.outcome is Outcome.SUCCESS:
             # timed over robot and door DOFs, so the door is never swung faster than it can follow
             limits = np.concatenate([built.chain.velocity_limits * self.velocity_scale, self.door_velocity_limits])
             timed = time_parameterise(result.trajectory, built.problem.dof_names, limits)
-            path = JointPath(timed.times, built.chain.joint_names, timed.positions[:, :k], timed.velocities[:, :k])
-        final = tuple(float(v) for v in result.trajectory[-1, k:])
+            velocities = None if timed.velocities is None else timed.velocities[:, :k]
+            path = JointPath(timed.times, built.chain.joint_names, timed.positions[:, :k], velocities)
+        final = (float(result.trajectory[-1, k]), float(result.trajectory[-1, k + 1]))  # (θ, φ)
         return MotionPlan(motion, result, path, final, attempts, time.perf_counter() - started, used_guess,
                           guess_time, guess_cpu)
 
@@ -131,7 +136,9 @@ class MotionLibrary:
                            message=f"feasible at the iteration limit after {result.iterations} iterations")
         return result
 
-    def _guesses(self, motion: Motion, built: MotionProblem, rng: np.random.Generator, attempt: int):
+    def _guesses(self, motion: Motion, built: MotionProblem, rng: np.random.Generator,
+                 attempt: int) -> Iterator[np.ndarray]:
+        """The cached trajectory (first attempt only), the IK guess, then random ones."""
         cached = self._cache.get(motion) if attempt == 0 else None
         if cached is not None and cached.shape == built.initial_guess.shape and \
                 np.allclose(cached[0], built.problem.start, atol=1e-3):

@@ -18,8 +18,10 @@ posture deviation from the nominal posture (Q2).
 
 from __future__ import annotations
 
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
 from enum import Enum
+from typing import Protocol
 
 import numpy as np
 
@@ -27,9 +29,9 @@ from door_robot.profile import Side
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import UP, DoorModel, rotation_vector
 from door_trajopt.ik import IkOptions, solve_ik, solve_ik_multistart
-from door_trajopt.problem import (ConstraintKind, JointLimits, PostureCost, SmoothnessSpec,
+from door_trajopt.problem import (Constraint, ConstraintKind, JointLimits, PostureCost, SmoothnessSpec,
                                   TrajectoryProblem, TrajoptError)
-from door_trajopt.waypoint_constraints import fixed_dof, waypoint_constraint
+from door_trajopt.waypoint_constraints import WaypointFunction, WaypointValue, fixed_dof, waypoint_constraint
 
 FULL_MASK = np.ones(6)
 POSITION_MASK = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
@@ -132,12 +134,24 @@ class MotionProblem:
 
 
 # --------------------------------------------------------------------- waypoint functions
-def _tcp_target_error(chain: ArmChain, target_of, mask: np.ndarray):
+ExtraConstraints = Callable[[int, int], list[Constraint]]
+"""A motion's constraints beyond the closed chain, for m DOFs and n waypoints."""
+
+
+class _Target(Protocol):
+    """A TCP target pose (odom) that may depend on the door state (θ, φ), and ∂(p, ω)/∂(θ, φ) (6×2)."""
+
+    def pose(self, theta: float, phi: float) -> np.ndarray: ...
+
+    def derivatives(self, theta: float, phi: float) -> np.ndarray: ...
+
+
+def _tcp_target_error(chain: ArmChain, target_of: _Target, mask: np.ndarray) -> WaypointFunction:
     """Waypoint function: masked TCP pose error to a target that may depend on (θ, φ)."""
     rows = mask.astype(bool)
     k = chain.size
 
-    def function(q: np.ndarray, need_jacobian: bool):
+    def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
         pose = chain.tcp_pose(q[:k])
         target = target_of.pose(q[k], q[k + 1])
         error = np.concatenate([pose[:3, 3] - target[:3, 3], rotation_vector(pose[:3, :3] @ target[:3, :3].T)])
@@ -181,34 +195,34 @@ def _fixed_target(pose: np.ndarray) -> _FixedTarget:
     return _FixedTarget(pose)
 
 
-def _com_in_polygon(setup: MotionSetup, margin: float):
+def _com_in_polygon(setup: MotionSetup, margin: float) -> WaypointFunction:
     """g = [x_min − c_x, c_x − x_max, y_min − c_y, c_y − y_max] + margin ≤ 0."""
     x_min, x_max, y_min, y_max = setup.support_polygon
     k = setup.chain.size
     signs = np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, -1.0], [0.0, 1.0]])
     bounds = np.array([-x_min, x_max, -y_min, y_max])
 
-    def function(q: np.ndarray, need_jacobian: bool):
+    def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
         com, jacobian = setup.chain.com_and_jacobian(q[:k])
         value = signs @ com[:2] - bounds + margin
         return value, np.hstack([signs @ jacobian[:2], np.zeros((4, 2))])
     return function
 
 
-def _elbow_clearance(setup: MotionSetup, options: MotionOptions):
+def _elbow_clearance(setup: MotionSetup, options: MotionOptions) -> WaypointFunction:
     """g = clearance − (p_elbow − p_door)·n ≤ 0, the door face ``lever_standoff`` behind the grasp."""
     k, frame = setup.chain.size, setup.chain.elbow_frame
     normal = setup.door.normal
     face = setup.door.grasp_point - options.lever_standoff * normal
 
-    def function(q: np.ndarray, need_jacobian: bool):
+    def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
         point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
         value = np.array([options.wall_clearance - (point - face) @ normal])
         return value, np.hstack([-(normal @ jacobian)[None, :], np.zeros((1, 2))])
     return function
 
 
-def _doorway_clearance(setup: MotionSetup, options: MotionOptions):
+def _doorway_clearance(setup: MotionSetup, options: MotionOptions) -> WaypointFunction:
     """The forearm passes the doorway clear of the latch-side post (collision hinge loss).
 
     For each forearm point p, with s = (p − p_hinge)·u its distance along the closed door
@@ -222,7 +236,7 @@ def _doorway_clearance(setup: MotionSetup, options: MotionOptions):
     limit = setup.door_width - options.post_inset - options.forearm_clearance
     slope, free_distance = 3.0, 0.03
 
-    def function(q: np.ndarray, need_jacobian: bool):
+    def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
         values, rows = [], []
         for frame in frames:
             point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
@@ -235,7 +249,7 @@ def _doorway_clearance(setup: MotionSetup, options: MotionOptions):
     return function
 
 
-def _head_clearance(setup: MotionSetup, options: MotionOptions):
+def _head_clearance(setup: MotionSetup, options: MotionOptions) -> WaypointFunction:
     """A pulled leaf swings towards the head (bent over a low handle, TALOS's head met the
     leaf and the grasp slipped): g = clearance − (p_head − p_hinge)·n(θ) ≤ 0, with
     n(θ) = R(θ)n the leaf's robot-side normal at the waypoint's hinge angle θ, and
@@ -244,7 +258,7 @@ def _head_clearance(setup: MotionSetup, options: MotionOptions):
     k, frame = setup.chain.size, setup.chain.kinematics.profile.head_camera_frame
     door = setup.door
 
-    def function(q: np.ndarray, need_jacobian: bool):
+    def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
         point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
         normal = door.leaf_rotation(q[k]) @ door.normal
         offset = point - door.hinge_point
@@ -254,7 +268,7 @@ def _head_clearance(setup: MotionSetup, options: MotionOptions):
     return function
 
 
-def _pull_head_clearance(setup: MotionSetup, options: MotionOptions, m: int, n: int) -> list:
+def _pull_head_clearance(setup: MotionSetup, options: MotionOptions, m: int, n: int) -> list[Constraint]:
     """The head clearance at every moving waypoint, for pull doors only."""
     if setup.door.push:
         return []
@@ -277,8 +291,9 @@ def _limits(setup: MotionSetup, door_moves: tuple[bool, bool], start_chain: np.n
     return JointLimits(np.array(lower), np.array(upper))
 
 
-def _problem(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions, door_moves,
-             constraints, end: np.ndarray | None = None, pinned: tuple[str, ...] = ()) -> TrajectoryProblem:
+def _problem(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions, door_moves: tuple[bool, bool],
+             constraints: Sequence[Constraint], end: np.ndarray | None = None,
+             pinned: tuple[str, ...] = ()) -> TrajectoryProblem:
     chain = setup.chain
     m = chain.size + 2
     start = np.concatenate([start_chain, setup.start_door])
@@ -344,7 +359,7 @@ def _approach(setup: MotionSetup, start_chain: np.ndarray, options: MotionOption
 
 
 def _closed_chain(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions,
-                  door_path: np.ndarray, door_moves, extra) -> MotionProblem:
+                  door_path: np.ndarray, door_moves: tuple[bool, bool], extra: ExtraConstraints) -> MotionProblem:
     """Every waypoint holds the handle; the door follows ``door_path`` (n, 2) in the guess."""
     n, m = options.waypoints, setup.chain.size + 2
     target = _grasp_target(setup, _tcp_in_grasp(setup, start_chain))
@@ -376,7 +391,7 @@ def _swing(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
     angle = options.push_angle if setup.door.push else options.pull_angle
     path = np.column_stack([np.linspace(theta, angle, n), np.full(n, phi)])
 
-    def extra(m: int, n: int) -> list:
+    def extra(m: int, n: int) -> list[Constraint]:
         schedule = {t: float(path[t, 0]) for t in range(1, n)}
         constraints = [fixed_dof("door_schedule", setup.chain.size, schedule, m, n)]
         if setup.door.push:  # the forearm goes through the doorway with the door
@@ -548,5 +563,5 @@ def support_polygon(chain: ArmChain) -> np.ndarray:
         for dx in (-walking.foot_length / 2, walking.foot_length / 2):
             for dy in (-walking.foot_width / 2, walking.foot_width / 2):
                 corners.append((sole @ np.array([dx, dy, 0.0, 1.0]))[:2])
-    corners = np.array(corners)
-    return np.array([corners[:, 0].min(), corners[:, 0].max(), corners[:, 1].min(), corners[:, 1].max()])
+    xy = np.array(corners)
+    return np.array([xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(), xy[:, 1].max()])

@@ -35,7 +35,7 @@ from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import rotation_about_up, rotation_vector
 from door_trajopt.ik import pose_error
 from door_trajopt.problem import ConstraintKind, Derivative, JointLimits, SmoothnessSpec, TrajectoryProblem
-from door_trajopt.waypoint_constraints import waypoint_constraint
+from door_trajopt.waypoint_constraints import WaypointFunction, WaypointValue, waypoint_constraint
 
 WAYPOINTS = 100
 ARC_POSES = 40  # 240 equalities
@@ -116,9 +116,9 @@ def peer_problems(kinematics: RobotKinematics, side: Side = Side.RIGHT) -> tuple
     return reach_problem(kinematics, side), door_arc_problem(kinematics, side)
 
 
-def _tcp_pose_error(chain: ArmChain, target: np.ndarray):
+def _tcp_pose_error(chain: ArmChain, target: np.ndarray) -> WaypointFunction:
     """Waypoint function (p − p*, log(R R*ᵀ)) and its Jacobian, the TCP's (world-aligned)."""
-    def function(q: np.ndarray, need_jacobian: bool):
+    def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
         error = -pose_error(chain.tcp_pose(q), target)
         return error, (chain.tcp_jacobian(q) if need_jacobian else None)
     return function

@@ -450,7 +450,7 @@ class SqpSolver(BackendSolver[SqpOptions]):
         hessian = self._quadratic_hessian
         if self._curvature is not None:
             if previous is not None and multipliers is not None:
-                self._update_curvature(previous.point, point, multipliers)
+                self._update_curvature(self._curvature, previous.point, point, multipliers)
             hessian = hessian + self._curvature.matrix()
         residuals = self._evaluator.objective.residual_models(values.free)
         if not residuals and self._curvature is None:  # the constant Hessian: P needs no update
@@ -459,12 +459,14 @@ class SqpSolver(BackendSolver[SqpOptions]):
             hessian = hessian + residual.weight * (residual.jacobian.T @ residual.jacobian)
         return ConvexModel(point, sp.csr_matrix(hessian))
 
-    def _update_curvature(self, old: PointModel, new: PointModel, multipliers: FloatArray) -> None:
+    @staticmethod
+    def _update_curvature(curvature: BlockCurvature, old: PointModel, new: PointModel,
+                          multipliers: FloatArray) -> None:
         """``y = (J_new − J_old)ᵀ λ`` over the equality and inequality rows."""
         k_eq = old.equality_jacobian.shape[0]
         change = (new.equality_jacobian - old.equality_jacobian).T @ multipliers[:k_eq] + \
             (new.inequality_jacobian - old.inequality_jacobian).T @ multipliers[k_eq:]
-        self._curvature.update(new.values.free - old.values.free, np.asarray(change).reshape(-1))
+        curvature.update(new.values.free - old.values.free, np.asarray(change).reshape(-1))
 
     # --- one trust-region trial ---------------------------------------------
 

@@ -21,6 +21,8 @@ import importlib.util
 import time
 import xml.etree.ElementTree as ElementTree
 from dataclasses import dataclass
+from types import ModuleType
+from typing import Any
 
 import numpy as np
 
@@ -51,8 +53,13 @@ def _urdf_without_meshes(path: str) -> str:
 
 def _parent_link(urdf_path: str, joint_name: str) -> str:
     for joint in ElementTree.parse(urdf_path).getroot().iter("joint"):
-        if joint.get("name") == joint_name:
-            return joint.find("parent").get("link")
+        if joint.get("name") != joint_name:
+            continue
+        parent = joint.find("parent")
+        link = None if parent is None else parent.get("link")
+        if link is None:
+            raise ValueError(f"{urdf_path}: joint {joint_name!r} names no parent link")
+        return link
     raise ValueError(f"{urdf_path} has no joint {joint_name!r}")
 
 
@@ -96,7 +103,8 @@ class TrajOptPeer:
         seconds = time.perf_counter() - started
         return PeerRun(np.asarray(result.traj, dtype=float).reshape(self.peer.n_waypoints, -1), seconds)
 
-    def _construct(self):
+    def _construct(self) -> Any:
+        """The Tesseract TrajOpt problem (the bindings are untyped)."""
         import tesseract_robotics.tesseract_motion_planners_trajopt as trajopt
 
         peer, k = self.peer, self.peer.chain.size
@@ -122,7 +130,7 @@ class TrajOptPeer:
             info.cnt_infos.append(self._pose_term(trajopt, t, pose))
         return trajopt.ConstructProblem(info)
 
-    def _pose_term(self, trajopt, waypoint: int, pose: np.ndarray):
+    def _pose_term(self, trajopt: ModuleType, waypoint: int, pose: np.ndarray) -> Any:
         from tesseract_robotics.tesseract_common import Isometry3d
 
         tcp = np.eye(4)

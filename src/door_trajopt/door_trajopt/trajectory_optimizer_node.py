@@ -14,6 +14,8 @@ The library job of a request and the outcome's details are built by :mod:`door_t
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from rclpy.node import Node
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
@@ -88,9 +90,7 @@ class TrajectoryOptimizerNode(Node):
             self.joint_positions = None
             self.get_logger().warning(f"joint states rejected: {error}")
 
-
-
-    def _job_for(self, request: MotionRequest, estimate: DoorEstimate | None):
+    def _job_for(self, request: MotionRequest, estimate: DoorEstimate | None) -> Callable[[], MotionPlan]:
         """The planning job of ``request`` over the inputs as they are now (the measured state)."""
         base = None if self.inputs.base_pose is None else self.inputs.base_pose.copy()
         snapshot = Snapshot(None if self.joint_positions is None else dict(self.joint_positions), base, estimate)
@@ -99,9 +99,8 @@ class TrajectoryOptimizerNode(Node):
     def _deliver_one(self, finished: Finished) -> None:
         """On the executor thread: one outcome per finished request, and the trajectory if proposed."""
         request, plan = finished.request, finished.result
-        def answer(status, reason, plan=None, stamp=-1):
-            return self._answer(
-                    request.request_id, request.motion, request.backend, status, reason, plan, stamp)
+        def answer(status: OutcomeStatus, reason: str, plan: MotionPlan | None = None, stamp: int = -1) -> None:
+            self._answer(request.request_id, request.motion, request.backend, status, reason, plan, stamp)
         settled = finished.answer_without_result(BAD_INPUT)
         if settled is not None:
             if settled[0] is OutcomeStatus.FAILURE:  # a bug: a failure outcome, not a dead node
@@ -131,7 +130,7 @@ class TrajectoryOptimizerNode(Node):
                                   without_non_finite(details))  # a diverged plan's NaN cost must not stop it
         self.outcome_pub.publish(String(data=encode(outcome)))
         line = f"request {request_id} ({motion}): {status.value}"
-        if status is OutcomeStatus.SUCCESS:  # rclpy forbids one call site logging at two severities
+        if status is OutcomeStatus.SUCCESS and plan is not None:  # rclpy: one severity per call site
             self.get_logger().info(f"{line} in {plan.planning_time_s * 1000:.0f} ms ({plan.result.iterations} "
                                    f"iterations, guess {plan.attempts}; {plan.result.message or 'converged'})")
         else:
@@ -139,7 +138,6 @@ class TrajectoryOptimizerNode(Node):
         self.heartbeat.update(Health.OK if status is OutcomeStatus.SUCCESS else Health.WARN,
                               f"last: {motion} {status.value}",
                               last_planning_ms=round(plan.planning_time_s * 1000.0, 1) if plan else "-")
-
 
     def destroy_node(self) -> None:
         self.desk.close()

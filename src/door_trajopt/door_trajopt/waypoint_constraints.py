@@ -14,9 +14,11 @@ from collections.abc import Callable, Sequence
 import numpy as np
 import scipy.sparse as sp
 
-from door_trajopt.problem import Constraint, ConstraintKind
+from door_trajopt.problem import Constraint, ConstraintKind, TrajectoryFunction, TrajectoryJacobian, TrajoptError
 
-WaypointFunction = Callable[[np.ndarray, bool], tuple[np.ndarray, np.ndarray | None]]
+WaypointValue = tuple[np.ndarray, np.ndarray | None]
+"""What a waypoint function returns: (value, jacobian or None when not needed)."""
+WaypointFunction = Callable[[np.ndarray, bool], WaypointValue]
 """f(q_t, need_jacobian) → (value, jacobian or None when not needed)."""
 
 
@@ -35,7 +37,16 @@ def _block_pattern(at: Sequence[int], rows: int, m: int, n: int) -> sp.csr_matri
                          shape=(rows * len(at), n * m))
 
 
-def _callbacks(function: WaypointFunction, at: Sequence[int], rows: int, m: int, n: int):
+def _jacobian_at(function: WaypointFunction, waypoint: np.ndarray) -> np.ndarray:
+    """The waypoint function's Jacobian at ``waypoint`` (it must give one when asked)."""
+    jacobian = function(waypoint, True)[1]
+    if jacobian is None:
+        raise TrajoptError("a waypoint function returned no Jacobian when asked for one")
+    return jacobian
+
+
+def _callbacks(function: WaypointFunction, at: Sequence[int], rows: int, m: int,
+               n: int) -> tuple[TrajectoryFunction, TrajectoryJacobian, TrajectoryFunction | None]:
     """Value, Jacobian and Jacobian-data callbacks. The data are the blocks' entries block by
     block, row-major: with increasing waypoints that is the CSR order of the pattern."""
     at = tuple(at)
@@ -46,7 +57,7 @@ def _callbacks(function: WaypointFunction, at: Sequence[int], rows: int, m: int,
         return np.concatenate([function(trajectory[t], False)[0] for t in at])
 
     def data(trajectory: np.ndarray) -> np.ndarray:
-        return np.concatenate([function(trajectory[t], True)[1].ravel() for t in at])
+        return np.concatenate([_jacobian_at(function, trajectory[t]).ravel() for t in at])
 
     def jacobian(trajectory: np.ndarray) -> sp.csr_matrix:
         return sp.csr_matrix((data(trajectory), (row_index, col_index)), shape=shape)

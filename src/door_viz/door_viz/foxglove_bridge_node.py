@@ -6,10 +6,13 @@ publishers, so latched topics arrive at once). Foxglove clients may publish JSON
 ``std_msgs/String`` messages on the allowed topics (``/door_task/operator``: approve from a
 Publish or button panel); the bridge republishes them on ROS. The URDF's ``package://``
 meshes are served to the 3-D panel. Bound to 127.0.0.1 unless ``address`` says otherwise.
-The ROS-free parts are in :mod:`door_viz.foxglove_core`.
+The ROS-free parts are :mod:`door_viz.foxglove_core` (schemas, client commands, assets, the
+listener queue) and :mod:`door_viz.foxglove_routes` (what is forwarded where).
 """
 
 from __future__ import annotations
+
+from typing import Any, cast
 
 import foxglove
 from foxglove.websocket import Capability, StatusLevel
@@ -32,10 +35,9 @@ from door_viz.foxglove_core import (
     SchemaLibrary,
     ServerEvent,
     ServerEvents,
-    client_channel_refusal,
-    client_string,
     mesh_asset,
 )
+from door_viz.foxglove_routes import Routes, Watch, WatchChange
 from door_viz.parameters import FOXGLOVE_NODE, FOXGLOVE_PARAMETERS
 
 EVENT_PERIOD_S = 0.02
@@ -56,11 +58,9 @@ class FoxgloveBridgeNode(Node):
         except RobotModelError as error:
             raise ParameterRangeError(f"parameter 'robot_profile': {error}") from None
         self.schemas, self.events, self.sdk_context = SchemaLibrary(), ServerEvents(), foxglove.Context()
-        self.channels: dict[str, foxglove.Channel | None] = {}  # None: a type without schema
-        self.topic_of_channel: dict[int, str] = {}
-        self.watchers: dict[str, set[int]] = {}  # topic -> clients subscribed to it
-        self.ros_subscriptions = {}
-        self.client_channels: dict[tuple[int, int], str] = {}  # (client, its channel) -> topic
+        self.routes = Routes(p["client_topics"])
+        self.channels: dict[str, foxglove.Channel] = {}
+        self.ros_subscriptions: dict[str, Any] = {}
         # one publisher per allowed topic, made now, so subscribers have matched it before a
         # client's first message (a publisher made on demand would lose that message)
         self.client_publishers = {topic: self.create_publisher(String, topic, contract_profile(topic))
@@ -84,37 +84,28 @@ class FoxgloveBridgeNode(Node):
 
     # ------------------------------------------------------------------ ROS → Foxglove
     def _discover(self) -> None:
-        for topic, types in self.get_topic_names_and_types():
-            if topic in self.channels or not types:
-                continue
-            schema = self.schemas.schema(types[0])
+        for topic, type_name in self.routes.unseen(self.get_topic_names_and_types()):
+            schema = self.schemas.schema(type_name)
             if schema is None:
-                self.channels[topic] = None  # unknown type: not forwarded (said once)
-                self.get_logger().warning(f"{topic}: no schema for {types[0]}, not forwarded")
+                self.routes.unrouted(topic)  # unknown type: not forwarded (said once)
+                self.get_logger().warning(f"{topic}: no schema for {type_name}, not forwarded")
                 continue
             channel = foxglove.Channel(topic, message_encoding="cdr", context=self.sdk_context,
-                                       schema=foxglove.Schema(name=types[0], encoding="ros2msg", data=schema))
+                                       schema=foxglove.Schema(name=type_name, encoding="ros2msg", data=schema))
             self.channels[topic] = channel
-            self.topic_of_channel[channel.id()] = topic
-        self.heartbeat.update(Health.OK, "serving", channels=len(self.topic_of_channel), forwarded=self.forwarded,
+            self.routes.route(topic, type_name, channel.id())
+        self.heartbeat.update(Health.OK, "serving", channels=self.routes.channels, forwarded=self.forwarded,
                               watched=len(self.ros_subscriptions))
 
-    def _watch(self, event: ServerEvent) -> None:
-        topic = self.topic_of_channel.get(event.channel)
-        if topic is None:
-            return
-        watchers = self.watchers.setdefault(topic, set())
-        if event.kind is EventKind.SUBSCRIBE:
-            watchers.add(event.client)
-        else:
-            watchers.discard(event.client)
-        if watchers and topic not in self.ros_subscriptions:
+    def _watch(self, change: WatchChange) -> None:
+        topic = change.topic
+        if change.watch is Watch.START:
             offered = [info.qos_profile for info in self.get_publishers_info_by_topic(topic)]
-            types = dict(self.get_topic_names_and_types()).get(topic) or [self.channels[topic].schema_name()]
+            channel = self.channels[topic]  # raw=True: the callback gets the CDR bytes (rclpy annotates the type)
             self.ros_subscriptions[topic] = self.create_subscription(
-                interface_class(types[0]), topic, lambda data, c=self.channels[topic]: self._forward(c, data),
+                interface_class(change.type_name), topic, lambda data: self._forward(channel, cast(bytes, data)),
                 matching_subscription(offered, contract_profile(topic)), raw=True)
-        elif not watchers and topic in self.ros_subscriptions:
+        elif topic in self.ros_subscriptions:
             self.destroy_subscription(self.ros_subscriptions.pop(topic))
 
     def _forward(self, channel: foxglove.Channel, data: bytes) -> None:
@@ -125,35 +116,26 @@ class FoxgloveBridgeNode(Node):
     def _handle_events(self) -> None:
         for event in self.events.drain():
             if event.kind in (EventKind.SUBSCRIBE, EventKind.UNSUBSCRIBE):
-                self._watch(event)
+                change = self.routes.watch(event)
+                if change is not None:
+                    self._watch(change)
             elif event.kind is EventKind.CLIENT_ADVERTISE:
-                self._advertised(event)
+                refusal = self.routes.advertise(event)
+                if refusal is not None:
+                    self._refuse(refusal)
             elif event.kind is EventKind.CLIENT_UNADVERTISE:
-                self.client_channels.pop((event.client, event.channel), None)
+                self.routes.unadvertise(event)
             else:
                 self._client_message(event)
 
-    def _advertised(self, event: ServerEvent) -> None:
-        refusal = client_channel_refusal(event.topic, event.schema_name, event.encoding,
-                                         tuple(self.client_publishers))
-        if refusal is not None:
-            self._refuse(f"client {event.client}: {refusal}")
-            return
-        self.client_channels[(event.client, event.channel)] = event.topic
-
     def _client_message(self, event: ServerEvent) -> None:
-        topic = self.client_channels.get((event.client, event.channel))
-        if topic is None:
-            self._refuse(f"client {event.client}: message on channel {event.channel}, which was refused "
-                         "or never advertised")
-            return
         try:
-            text = client_string(JSON_ENCODING, event.data)
+            message = self.routes.client_message(event)
         except ClientCommandError as error:
-            self._refuse(f"client {event.client} on {topic}: {error}")
+            self._refuse(str(error))
             return
-        self.client_publishers[topic].publish(String(data=text))
-        self.get_logger().info(f"Foxglove client {event.client} on {topic}: {text!r}")
+        self.client_publishers[message.topic].publish(String(data=message.text))
+        self.get_logger().info(f"Foxglove client {event.client} on {message.topic}: {message.text!r}")
 
     def _refuse(self, reason: str) -> None:
         self.get_logger().warning(reason)

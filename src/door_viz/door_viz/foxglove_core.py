@@ -22,11 +22,16 @@ import queue
 from dataclasses import dataclass
 from enum import Enum
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from rosbags.typesys import Stores, get_typestore
 
 from door_robot.meshes import resolve_package_uri
 from door_viz.errors import DoorVizError
+
+if TYPE_CHECKING:  # the SDK's types (the listener is called with them); the module runs without importing it
+    from foxglove import Parameter
+    from foxglove.websocket import ChannelView, Client, ClientChannel, PlaybackControlRequest, PlaybackState
 
 STRING_TYPE = "std_msgs/msg/String"
 JSON_ENCODING = "json"
@@ -109,32 +114,34 @@ class ServerEvents:
     def __init__(self) -> None:
         self._queue: queue.SimpleQueue[ServerEvent] = queue.SimpleQueue()
 
-    def on_subscribe(self, client, channel) -> None:
+    def on_subscribe(self, client: Client, channel: ChannelView) -> None:
         self._queue.put(ServerEvent(EventKind.SUBSCRIBE, client.id, channel.id, channel.topic))
 
-    def on_unsubscribe(self, client, channel) -> None:
+    def on_unsubscribe(self, client: Client, channel: ChannelView) -> None:
         self._queue.put(ServerEvent(EventKind.UNSUBSCRIBE, client.id, channel.id, channel.topic))
 
-    def on_client_advertise(self, client, channel) -> None:
+    def on_client_advertise(self, client: Client, channel: ClientChannel) -> None:
         self._queue.put(ServerEvent(EventKind.CLIENT_ADVERTISE, client.id, channel.id, channel.topic,
                                     channel.schema_name or "", channel.encoding or ""))
 
-    def on_client_unadvertise(self, client, client_channel_id: int) -> None:
+    def on_client_unadvertise(self, client: Client, client_channel_id: int) -> None:
         self._queue.put(ServerEvent(EventKind.CLIENT_UNADVERTISE, client.id, client_channel_id))
 
-    def on_message_data(self, client, client_channel_id: int, data: bytes) -> None:
+    def on_message_data(self, client: Client, client_channel_id: int, data: bytes) -> None:
         self._queue.put(ServerEvent(EventKind.CLIENT_MESSAGE, client.id, client_channel_id, data=bytes(data)))
 
-    def on_get_parameters(self, client, param_names, request_id=None) -> list:
+    def on_get_parameters(self, client: Client, param_names: list[str],
+                          request_id: str | None = None) -> list[Parameter]:
         return []
 
-    def on_set_parameters(self, client, parameters, request_id=None) -> list:
+    def on_set_parameters(self, client: Client, parameters: list[Parameter],
+                          request_id: str | None = None) -> list[Parameter]:
         return parameters
 
-    def on_parameters_subscribe(self, param_names) -> None:
+    def on_parameters_subscribe(self, param_names: list[str]) -> None:
         return None
 
-    def on_parameters_unsubscribe(self, param_names) -> None:
+    def on_parameters_unsubscribe(self, param_names: list[str]) -> None:
         return None
 
     def on_connection_graph_subscribe(self) -> None:
@@ -143,12 +150,12 @@ class ServerEvents:
     def on_connection_graph_unsubscribe(self) -> None:
         return None
 
-    def on_playback_control_request(self, playback_control_request):
+    def on_playback_control_request(self, playback_control_request: PlaybackControlRequest) -> PlaybackState | None:
         return None
 
     def drain(self, limit: int = 1000) -> list[ServerEvent]:
         """The queued events, oldest first (at most ``limit``)."""
-        events = []
+        events: list[ServerEvent] = []
         while len(events) < limit:
             try:
                 events.append(self._queue.get_nowait())

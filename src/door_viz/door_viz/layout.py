@@ -21,6 +21,7 @@ from __future__ import annotations
 import json
 import sys
 from pathlib import Path
+from typing import Any
 
 from door_contract.frames import Frame
 from door_contract.topics import Topics
@@ -31,19 +32,25 @@ SCENE_TOPICS = (Topics.ROBOT_DESCRIPTION, Topics.DOOR_MARKERS, Topics.PROPOSAL_M
 OVERLAY_TOPICS = (Topics.DOOR_MARKERS, Topics.PROPOSAL_MARKERS)
 
 
-def _split(direction: str, first, second, percentage: float) -> dict:
+Json = dict[str, Any]
+"""A JSON object of the layout file."""
+Mosaic = str | Json
+"""A node of Foxglove's split tree: a panel id, or a split of two nodes."""
+
+
+def _split(direction: str, first: Mosaic, second: Mosaic, percentage: float) -> Json:
     return {"direction": direction, "first": first, "second": second, "splitPercentage": percentage}
 
 
-def _operator_publish(text: str, button: str, colour: str, advanced: bool) -> dict:
+def _operator_publish(text: str, button: str, colour: str, advanced: bool) -> Json:
     return {"topicName": Topics.OPERATOR.name, "datatype": "std_msgs/msg/String", "buttonText": button,
             "buttonTooltip": f"publish {{data: {text}}} on {Topics.OPERATOR.name}", "buttonColor": colour,
             "advancedView": advanced, "value": json.dumps({"data": text})}
 
 
-def panel_configs() -> dict[str, dict]:
+def panel_configs() -> dict[str, Json]:
     """Every panel's configuration by panel id (``<PanelType>!<name>``)."""
-    configs = {
+    configs: dict[str, Json] = {
         "3D!scene": {"followTf": Frame.BASE_LINK.value, "followMode": "follow-position",
                      "scene": {"transforms": {"showLabel": False}},
                      "topics": {topic.name: {"visible": True} for topic in SCENE_TOPICS},
@@ -63,7 +70,7 @@ def panel_configs() -> dict[str, dict]:
     return configs
 
 
-def mosaic() -> dict:
+def mosaic() -> Json:
     """How the panels are arranged (Foxglove's split tree)."""
     buttons = _split("row", _split("row", "Publish!pause", "Publish!stop", 50),
                      _split("row", "Publish!resume", "Publish!abort", 50), 50)
@@ -75,7 +82,7 @@ def mosaic() -> dict:
     return _split("row", _split("column", "3D!scene", cameras, 60), operator, 62)
 
 
-def layout() -> dict:
+def layout() -> Json:
     return {"configById": panel_configs(), "globalVariables": {}, "userNodes": {},
             "playbackConfig": {"speed": 1.0}, "layout": mosaic()}
 

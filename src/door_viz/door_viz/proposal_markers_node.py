@@ -11,10 +11,15 @@ message that breaks the contract is logged and leaves the picture as it was.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from functools import partial
+from typing import Any
+
 import numpy as np
 from nav_msgs.msg import Odometry, Path
 from rclpy.node import Node
 from rclpy.serialization import deserialize_message
+from rclpy.subscription import Subscription
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 from trajectory_msgs.msg import JointTrajectory
@@ -34,7 +39,7 @@ from door_contract.node_support import (
     node_main,
 )
 from door_contract.payloads import DoorEstimate, FootstepRequest, MotionRequest, decode
-from door_contract.topics import Topics
+from door_contract.topics import Topics, TopicSpec
 from door_robot.errors import RobotModelError
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
@@ -54,12 +59,12 @@ class ProposalMarkersNode(Node):
             raise ParameterRangeError(f"parameter 'robot_profile': {error}") from None
         self.picture = ProposalPicture(SoleSize(profile.walking.foot_length, profile.walking.foot_width))
         self.sampled: dict[str, bytes] = {}  # topic -> one serialized message (/joint_states, /odom)
-        self.sampling = []  # the subscriptions taking them, while a trajectory waits
+        self.sampling: list[Subscription] = []  # the subscriptions taking them, while a trajectory waits
         self.pending_trajectory: JointPath | None = None  # waiting for /joint_states and /odom
         self.heartbeat = Heartbeat(self)
         self.markers_pub = create_contract_publisher(self, Topics.PROPOSAL_MARKERS)
-        def sub(topic, callback):
-            return create_contract_subscription(self, topic, callback)
+        def sub(topic: TopicSpec, callback: Callable[[Any], None]) -> None:
+            create_contract_subscription(self, topic, callback)
         sub(Topics.DOOR_ESTIMATE, self._guarded(self._on_door))
         sub(Topics.FOOTSTEP_REQUEST, self._guarded(lambda m: self._on_request(decode(FootstepRequest, m.data))))
         sub(Topics.MOTION_REQUEST, self._guarded(lambda m: self._on_request(decode(MotionRequest, m.data))))
@@ -67,9 +72,10 @@ class ProposalMarkersNode(Node):
         sub(Topics.MOTION_PROPOSAL, self._guarded(self._on_trajectory))
         self.get_logger().info(f"ready: {profile.name}, markers on {Topics.PROPOSAL_MARKERS.name}")
 
-    def _guarded(self, handler):
-        """``handler`` that logs a contract violation instead of raising, then republishes."""
-        def guarded(msg) -> None:
+    def _guarded(self, handler: Callable[[Any], bool | None]) -> Callable[[Any], None]:
+        """``handler`` that logs a contract violation instead of raising, then republishes
+        (unless it returns False: nothing changed)."""
+        def guarded(msg: Any) -> None:
             try:
                 changed = handler(msg) is not False
             except (ContractError, RobotModelError) as error:
@@ -85,7 +91,7 @@ class ProposalMarkersNode(Node):
         self.sampled.clear()
         if not self.sampling:
             self.sampling = [self.create_subscription(topic.msg_class(), topic.name,
-                                                      lambda data, t=topic.name: self._keep(t, data),
+                                                      partial(self._keep, topic.name),
                                                       topic.qos.to_profile(), raw=True)
                              for topic in (Topics.JOINT_STATES, Topics.ODOM)]
 

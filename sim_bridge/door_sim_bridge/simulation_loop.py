@@ -1,0 +1,246 @@
+"""The sim bridge's loop, without ROS: one execution at a time, the physics steps, the
+publications due in simulated time, and a bug in one tick contained.
+
+The node's timer calls :meth:`SimulationLoop.tick`, which runs :data:`STEPS_PER_TICK`
+steps; each step commands the running execution for the world's time, steps the physics
+once and hands the publications then due to the node (``publish``), so /clock and the
+joint states interleave with the physics exactly as a real robot's drivers would.
+
+Executions (``submit``): one at a time. A new one is refused (REJECTED, nothing moves) while
+the dead-man (:mod:`door_sim_bridge.deadman`) is tripped or another one runs; one that its
+own validation rejected reports that at once. ``stop`` ends the running one of a kind
+(it reports STOPPED where it is safe to leave the robot, see
+:meth:`~door_sim_bridge.execution.base.Execution.stop`).
+
+Bugs: an exception raised while building an execution, commanding it, stepping the
+physics or publishing is a :class:`TickFault`: it is counted (``status``), reported once
+per distinct error (a fault that repeats every tick is not reported again until another
+one comes between), the rest of that tick is skipped and the simulation goes on at the
+next tick. A fault of the execution or of the physics ends the running execution with
+FAILURE ``"internal error …"`` and the robot held where it is; a publication's fault
+moves nothing.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from enum import Enum
+
+from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus
+from door_sim_bridge.deadman import DeadMan
+from door_sim_bridge.execution import Execution
+from door_sim_bridge.schedule import Schedule
+from door_sim_bridge.world import DoorWorld
+
+__all__ = ["STEPS_PER_TICK", "LoopReport", "PublicationRates", "Running", "SimulationLoop", "Stop",
+           "Stream", "TickFault", "TickStage"]
+
+STEPS_PER_TICK = 4
+"""Physics steps per timer tick (the node's timer period is STEPS_PER_TICK / physics rate in real time)."""
+
+
+class Stream(str, Enum):
+    """The periodic publications of the bridge (their rates in simulated time)."""
+
+    CLOCK = "clock"
+    STATE = "state"  # joint states, odometry, feet, the door's joints, the heartbeat's figures
+    TF = "tf"
+    CAMERA = "camera"
+
+
+@dataclass(frozen=True)
+class PublicationRates:
+    """Rates (Hz, simulated time) of the streams; 0 turns a stream off."""
+
+    clock: float
+    state: float
+    tf: float
+    camera: float
+
+    def of(self, stream: Stream) -> float:
+        rate: float = getattr(self, stream.value)
+        return rate
+
+
+class TickStage(str, Enum):
+    """Where in the loop a fault was raised."""
+
+    BUILD = "building the execution"
+    EXECUTION = "commanding the execution"
+    HOLD = "holding the robot after a fault"
+    PHYSICS = "stepping the physics"
+    PUBLICATION = "publishing"
+
+
+@dataclass(frozen=True)
+class TickFault:
+    """A bug contained by the loop: where, the exception (its repr), the simulated time (s)."""
+
+    stage: TickStage
+    error: str
+    sim_time: float
+
+    def __str__(self) -> str:
+        return f"{self.stage.value} failed at t = {self.sim_time:.3f} s: {self.error}"
+
+
+@dataclass(frozen=True)
+class Running:
+    """The execution in progress, of ``kind``, answering request ``request_id`` (the stamp, ns)."""
+
+    execution: Execution
+    kind: ExecutionKind
+    request_id: int
+
+    def __str__(self) -> str:
+        return f"{self.kind.value} {self.request_id}"
+
+
+@dataclass(frozen=True)
+class Stop:
+    """A stop asked for (by an empty command, or by the dead-man: ``dead_man``) and why;
+    ``stopped`` is the execution told to stop, None when none of the kind ran."""
+
+    why: str
+    stopped: Running | None
+    dead_man: bool = False
+
+
+@dataclass(frozen=True)
+class LoopReport:
+    """What a call of the loop has for the node: outcomes to publish, new faults to log, a
+    stop, and the execution started."""
+
+    outcomes: tuple[ExecutionOutcome, ...] = ()
+    faults: tuple[TickFault, ...] = ()
+    stop: Stop | None = None
+    started: Running | None = None
+
+
+class SimulationLoop:
+    def __init__(self, world: DoorWorld, deadman: DeadMan, rates: PublicationRates, real_time: bool,
+                 wall_start: float) -> None:
+        """``real_time``: never run the simulated clock ahead of the wall clock (``wall_start``:
+        the wall time, s, of simulated time 0)."""
+        self.world, self.deadman, self.real_time, self.wall_start = world, deadman, real_time, wall_start
+        self._schedules = {stream: Schedule(rates.of(stream)) for stream in Stream if rates.of(stream) > 0}
+        self.running: Running | None = None
+        self.fault_count = 0
+        self.last_fault: TickFault | None = None
+
+    # ------------------------------------------------------------------ executions
+    def submit(self, kind: ExecutionKind, request_id: int, build: Callable[[DoorWorld], Execution]) -> LoopReport:
+        """Build the execution of a request and start it, or report why not."""
+        try:
+            execution = build(self.world)
+        except Exception as error:  # a bug: a failure outcome, not a dead node
+            fault = self._fault(TickStage.BUILD, error)
+            return LoopReport((self._internal_error(kind, request_id, fault),), self._new((fault,)))
+        refusal = self.deadman.refusal() or (f"busy executing {self.running}" if self.running else None)
+        if refusal is not None:
+            return LoopReport((ExecutionOutcome(kind, request_id, OutcomeStatus.REJECTED, refusal),))
+        if execution.done:  # rejected while validating: nothing moved
+            return LoopReport((self._outcome(Running(execution, kind, request_id)),))
+        self.running = Running(execution, kind, request_id)
+        return LoopReport(started=self.running)
+
+    def stop(self, kind: ExecutionKind | None, why: str) -> LoopReport:
+        """Stop the running execution if it is of ``kind`` (None: any); it reports STOPPED
+        when it ends."""
+        return LoopReport(stop=self._stop(kind, why))
+
+    def _stop(self, kind: ExecutionKind | None, why: str, dead_man: bool = False) -> Stop:
+        running = self.running
+        if running is None or kind not in (None, running.kind):
+            return Stop(why, None, dead_man)
+        running.execution.stop(why)
+        return Stop(why, running, dead_man)
+
+    def supervisor_beat(self, wall_now: float) -> bool:
+        """The supervisor's heartbeat arrived; True when it ends a tripped dead-man."""
+        return self.deadman.beat(wall_now)
+
+    # ------------------------------------------------------------------ the loop
+    def tick(self, wall_now: float, publish: Callable[[float, tuple[Stream, ...]], None]) -> LoopReport:
+        """Check the dead-man, then run up to :data:`STEPS_PER_TICK` steps (none while a
+        real-time simulation is ahead of the wall clock); ``publish(now, streams)`` is called
+        after each step with the streams due."""
+        silence = self.deadman.check(wall_now)
+        stop = self._stop(None, silence, dead_man=True) if silence is not None else None
+        outcomes: list[ExecutionOutcome] = []
+        faults: list[TickFault] = []
+        if self.real_time and self.world.time > wall_now - self.wall_start:
+            return LoopReport(stop=stop)
+        for _ in range(STEPS_PER_TICK):
+            stage = TickStage.EXECUTION
+            try:
+                ended = self._command()
+                if ended is not None:
+                    outcomes.append(ended)
+                stage = TickStage.PHYSICS
+                self.world.step()
+                stage = TickStage.PUBLICATION
+                publish(self.world.time, self.due(self.world.time))
+            except Exception as error:  # a bug in one tick: reported, and the simulation goes on
+                faults.append(self._fault(stage, error))
+                if stage is not TickStage.PUBLICATION:
+                    outcomes.extend(self._fail_running(faults))
+                break
+        return LoopReport(tuple(outcomes), self._new(faults), stop)
+
+    def due(self, now: float) -> tuple[Stream, ...]:
+        """The streams due at ``now`` (each is then scheduled for its next period)."""
+        return tuple(stream for stream, schedule in self._schedules.items() if schedule.due(now))
+
+    def status(self, wall_now: float) -> dict[str, object]:
+        """The figures of the bridge's heartbeat."""
+        elapsed = max(wall_now - self.wall_start, 1e-6)
+        return {"sim_time": round(self.world.time, 2), "real_time_factor": round(self.world.time / elapsed, 2),
+                "executing": self.running.kind.value if self.running else "-", "tick_faults": self.fault_count,
+                "last_fault": str(self.last_fault) if self.last_fault else "-"}
+
+    # ------------------------------------------------------------------ internals
+    def _command(self) -> ExecutionOutcome | None:
+        """Command the running execution for the world's time; its outcome once it ends."""
+        if self.running is None or not self.running.execution.command():
+            return None
+        running, self.running = self.running, None
+        return self._outcome(running)
+
+    @staticmethod
+    def _outcome(running: Running) -> ExecutionOutcome:
+        result = running.execution.result
+        if result is None:  # not reached: a finished execution has its result
+            raise AssertionError(f"{running} finished without a result")
+        return result.outcome(running.kind, running.request_id)
+
+    def _fail_running(self, faults: list[TickFault]) -> list[ExecutionOutcome]:
+        """End the running execution with FAILURE after ``faults[0]``, holding the robot."""
+        running, self.running = self.running, None
+        if running is None:
+            return []
+        reason = f"internal error: {faults[0]}"
+        try:
+            running.execution.cancel(reason)
+        except Exception as error:  # the hold failed too: the outcome is still reported
+            faults.append(self._fault(TickStage.HOLD, error))
+        return [ExecutionOutcome(running.kind, running.request_id, OutcomeStatus.FAILURE, reason,
+                                 running.execution.elapsed)]
+
+    @staticmethod
+    def _internal_error(kind: ExecutionKind, request_id: int, fault: TickFault) -> ExecutionOutcome:
+        return ExecutionOutcome(kind, request_id, OutcomeStatus.FAILURE, f"internal error: {fault}")
+
+    def _fault(self, stage: TickStage, error: Exception) -> TickFault:
+        self.fault_count += 1
+        return TickFault(stage, repr(error), self.world.time)
+
+    def _new(self, faults: tuple[TickFault, ...] | list[TickFault]) -> tuple[TickFault, ...]:
+        """The faults to report: each unless it repeats the one before it (stage and error)."""
+        new = []
+        for fault in faults:
+            last, self.last_fault = self.last_fault, fault
+            if last is None or (last.stage, last.error) != (fault.stage, fault.error):
+                new.append(fault)
+        return tuple(new)
