@@ -10,6 +10,7 @@ import numpy as np
 from door_contract.vocabulary import DoorOpening, HingeSide
 from door_robot.profile import load_profile
 from footstep_planner.door import DoorGeometry
+from footstep_planner.footprint import body_box_centre
 from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.geometry import wrap_angle
 from footstep_planner.options import FootstepPlannerOptions
@@ -63,7 +64,8 @@ def collisions_along(plan: FootstepPlan, world: World,
                                     options.foot_margin)[0]:
             problems.append(f"step {index}: sole {step}")
         body = stance.body_pose
-        if world.rectangles_collide(np.array([body.x]), np.array([body.y]), np.array([body.yaw]),
+        box_x, box_y = body_box_centre(body.x, body.y, body.yaw, options.body_offset)
+        if world.rectangles_collide(np.array([box_x]), np.array([box_y]), np.array([body.yaw]),
                                     2.0 * options.body_half_depth, 2.0 * options.body_half_width,
                                     options.body_margin)[0]:
             problems.append(f"step {index}: body {body}")

@@ -102,11 +102,14 @@ def test_the_seed_papers_robots_work_from_their_profiles(shared_data, profile):
 
 
 def test_the_walking_posture_fits_the_profiles_body_rectangle():
-    """The footstep planner keeps a centred body_width × body_depth rectangle clear of the
-    door frame: every link of TALOS walking (grippers included) must lie inside it."""
+    """The footstep planner keeps a body_width × body_depth rectangle, its centre body_offset
+    ahead of the base, clear of the door frame: every link of TALOS walking (grippers
+    included) must lie inside it, and it is no more than 2 cm deeper than the robot."""
     with DoorWorld(WorldConfig(stance=StanceConfig(distance=3.0, yaw=0.3))) as sim:
         extents = sim.body_extents()
     walking = sim.profile.walking
     assert max(extents["left"], extents["right"]) <= walking.body_width / 2.0
-    assert max(extents["ahead"], extents["behind"]) <= walking.body_depth / 2.0
+    assert extents["ahead"] <= walking.body_depth / 2.0 + walking.body_offset
+    assert extents["behind"] <= walking.body_depth / 2.0 - walking.body_offset
+    assert walking.body_depth - (extents["ahead"] + extents["behind"]) < 0.02
     assert min(extents.values()) > 0.1  # the probes did touch the robot

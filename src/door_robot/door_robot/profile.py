@@ -50,8 +50,9 @@ class WalkingLimits:
     foot_length: float  # m
     foot_width: float  # m
     body_width: float  # m, shoulder to shoulder with arms tucked
-    body_depth: float  # m
+    body_depth: float  # m, front to back
     step_duration: float = 1.0  # s per footstep (robot clock): execution deadlines scale with it
+    body_offset: float = 0.0  # m, the body box's centre ahead of the base (arms reach further forward than back)
 
 
 @dataclass(frozen=True)

@@ -199,7 +199,8 @@ class FootstepPlanner:
             bounds=Bounds(bounds.x_min - grow, bounds.x_max + grow, bounds.y_min - grow,
                           bounds.y_max + grow),
             seeds=centres, goal=(goal.x, goal.y), goal_radius=options.goal_position_tolerance,
-            body_radius=min(options.body_half_width, options.body_half_depth) + options.body_margin,
+            body_radius=min(options.body_half_width, options.body_half_depth - abs(options.body_offset))
+            + options.body_margin,
             hop=self._actions.max_body_hop)
 
 

@@ -10,6 +10,7 @@ the body's depth, not its width, across the opening.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -35,6 +36,7 @@ class FootprintChecker:
     def bodies_collide(self, x: FloatArray, y: FloatArray, yaw: FloatArray) -> BoolArray:
         """For N body poses, does each body rectangle (grown by body_margin) touch an obstacle?"""
         options = self.options
+        x, y = body_box_centre(x, y, yaw, options.body_offset)
         return self.world.rectangles_collide(x, y, yaw, 2.0 * options.body_half_depth,
                                              2.0 * options.body_half_width, options.body_margin)
 
@@ -57,7 +59,16 @@ class FootprintChecker:
             if names:
                 return f"{step.foot.value} sole touches {', '.join(names)}"
         body = stance.body_pose
-        names = self.world.colliding_obstacles(body.x, body.y, body.yaw,
+        box_x, box_y = body_box_centre(body.x, body.y, body.yaw, options.body_offset)
+        names = self.world.colliding_obstacles(box_x, box_y, body.yaw,
                                                2.0 * options.body_half_depth,
                                                2.0 * options.body_half_width, options.body_margin)
         return f"body touches {', '.join(names)}" if names else None
+
+
+def body_box_centre(x: Any, y: Any, yaw: Any, offset: float) -> tuple[Any, Any]:
+    """Centre of the body rectangle of bodies at (x, y, yaw): ``offset`` ahead along the
+    heading (scalars or arrays alike)."""
+    if offset == 0.0:
+        return x, y
+    return x + offset * np.cos(yaw), y + offset * np.sin(yaw)

@@ -48,6 +48,10 @@ class FootstepPlannerOptions:
     """Half the body depth front to back (m), (0, 1]."""
     body_margin: float = 0.02
     """Clearance added around the body rectangle (m), [0, 0.2]."""
+    body_offset: float = 0.0
+    """The body rectangle's centre ahead of the stance centre (m), [-0.5, 0.5]: a robot
+    whose arms reach further forward than its back (TALOS's grippers 0.28 m ahead, its
+    torso 0.21 m behind) gets a box that fits it rather than one centred on the feet."""
     step_cost: float = 1.0
     """Fixed cost of every step (cost units), (0, 1000]."""
     distance_weight: float = 1.0
@@ -114,6 +118,7 @@ _RANGES: dict[str, FieldRange] = {
     "body_half_width": FieldRange(0.0, 1.0, "m", low_open=True),
     "body_half_depth": FieldRange(0.0, 1.0, "m", low_open=True),
     "body_margin": FieldRange(0.0, 0.2, "m"),
+    "body_offset": FieldRange(-0.5, 0.5, "m"),
     "step_cost": FieldRange(0.0, 1000.0, "", low_open=True),
     "distance_weight": FieldRange(0.0, 1000.0, "1/m"),
     "turn_weight": FieldRange(0.0, 1000.0, "1/rad"),

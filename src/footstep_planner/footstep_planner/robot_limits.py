@@ -30,6 +30,7 @@ def options_for_walking(walking: WalkingLimits, heuristic_weight: float, max_exp
         min_foot_separation=min(MIN_FOOT_SEPARATION, walking.foot_separation * 0.9),
         foot_length=walking.foot_length, foot_width=walking.foot_width,
         body_half_width=walking.body_width / 2.0, body_half_depth=walking.body_depth / 2.0,
+        body_offset=walking.body_offset,
         heuristic_weight=heuristic_weight, max_expansions=max_expansions,
         max_planning_time=max_planning_time)
 

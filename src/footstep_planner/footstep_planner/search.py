@@ -241,9 +241,12 @@ class Search:
         one batched test of 3 n rectangles."""
         rows = np.concatenate((chosen, chosen + count, chosen + 2 * count))
         half_length, half_width = self._half_extents
-        hits = self._world.rectangles_touch(points[rows, 0], points[rows, 1],
-                                            np.concatenate((foot_yaw, foot_yaw, midpoint_yaw)),
-                                            half_length[rows], half_width[rows])
+        yaw = np.concatenate((foot_yaw, foot_yaw, midpoint_yaw))
+        x, y = points[rows, 0], points[rows, 1]
+        if self._options.body_offset:  # the bodies' boxes sit ahead of their centres; soles do not
+            ahead = np.repeat([0.0, self._options.body_offset, self._options.body_offset], len(chosen))
+            x, y = x + ahead * np.cos(yaw), y + ahead * np.sin(yaw)
+        hits = self._world.rectangles_touch(x, y, yaw, half_length[rows], half_width[rows])
         return np.asarray(~hits.reshape(3, -1).any(axis=0))
 
     def _success(self, start: Stance, index: int, expansions: int) -> PlanResult:
