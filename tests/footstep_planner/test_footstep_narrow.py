@@ -18,12 +18,12 @@ from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.geometry import wrap_angle
 from footstep_planner.goals import through_door_pose
 from footstep_planner.legs import plan_legs
-from footstep_planner.narrow import PASSAGE_CLEARANCE, SIDEWAYS, passage_legs, passage_turn
+from footstep_planner.narrow import PASSAGE_CLEARANCE, SIDEWAYS, hold_leaf_line, passage_legs, passage_turn
 from footstep_planner.world import World
 
 OPTIONS = profile_options()
 BODY_ACROSS = 2.0 * (OPTIONS.body_half_width + OPTIONS.body_margin)  # 0.84 m for TALOS
-BODY_DEEP = 2.0 * (OPTIONS.body_half_depth + OPTIONS.body_margin)    # 0.62 m
+BODY_DEEP = 2.0 * (OPTIONS.body_half_depth + abs(OPTIONS.body_offset) + OPTIONS.body_margin)  # 0.60 m
 
 
 def _door(width: float, opening: DoorOpening, hinge: HingeSide = HingeSide.LEFT):
@@ -90,3 +90,24 @@ def test_a_narrow_passage_plans_collision_free_within_the_limits(width: float, o
     assert collisions_along(result.plan, world, options) == []
     assert kinematic_violations(result.plan, options) == []
     assert result.plan.final_stance.body_pose.distance_to(legs[-1].goal) < 1e-9
+
+
+@pytest.mark.parametrize("hinge", list(HingeSide))
+def test_a_held_pull_leaf_is_passed_sideways_towards_the_body_s_back(hinge: HingeSide) -> None:
+    """hold_leaf: sideways although the body fits facing, on the line shifted towards the
+    body's back (the latch: it faces the hinge)."""
+    door = _door(0.95, DoorOpening.PULL, hinge)
+    assert len(passage_legs(door, OPTIONS, 1.0)) == 1
+    before, through, _ = passage_legs(door, OPTIONS, 1.0, hold_leaf=0.12)
+    latch_x, latch_y = door.latch_direction
+    assert abs(wrap_angle(before.goal.yaw - math.atan2(-latch_y, -latch_x))) < 1e-9
+    line = door.to_door(through.goal.x, through.goal.y)[0]
+    assert line == pytest.approx(door.clear_opening / 2.0 + 0.12)  # towards the latch: the body's back
+    assert door.to_door(before.goal.x, before.goal.y)[0] == pytest.approx(line)
+    assert hold_leaf_line(door, OPTIONS, through.goal.yaw + math.pi, 0.12) == pytest.approx(door.clear_opening / 2.0 - 0.12)
+
+
+def test_a_held_leaf_too_narrow_for_the_body_sideways_gets_the_direct_leg() -> None:
+    door = _door(BODY_DEEP + 2 * PASSAGE_CLEARANCE - 0.01, DoorOpening.PULL)
+    assert passage_turn(door, OPTIONS, sideways=True) is None
+    assert len(passage_legs(door, OPTIONS, 1.0, hold_leaf=0.1)) == 1

@@ -12,6 +12,7 @@ from door_robot.profile import load_profile
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.legs import plan_legs
+from footstep_planner.narrow import PullPassage
 from footstep_planner.requests import (
     PULL_LEG_NAMES,
     GoalSettings,
@@ -65,6 +66,11 @@ def test_each_goal_has_its_legs_and_snapping() -> None:
     options = profile_options()
     wide_pull = walk_problem(WalkGoal.THROUGH, door_facing_robot(DoorOpening.PULL), _start(options), options, SETTINGS)
     assert [leg.name for leg in wide_pull.legs] == list(PULL_LEG_NAMES)
+    sideways = GoalSettings.from_parameters({"pull_passage": "sideways"})
+    assert sideways.pull_passage is PullPassage.SIDEWAYS and SETTINGS.pull_passage is PullPassage.FACING
+    held = walk_problem(WalkGoal.THROUGH, door_facing_robot(DoorOpening.PULL), _start(options), options, sideways)
+    assert [leg.name for leg in held.legs] == [*PULL_LEG_NAMES[:2], "turn sideways before the doorway",
+                                                "side-step through the doorway", "turn to face away"]
     assert all(o.name.startswith(("wall", "post")) for o in wide_pull.world.obstacles)  # the leaf is pushed
     narrow = door_facing_robot(DoorOpening.PULL, leaf_width=0.8, clear_opening=0.8, handle_offset=0.07)
     narrow_pull = walk_problem(WalkGoal.THROUGH, narrow, _start(options), options, SETTINGS)

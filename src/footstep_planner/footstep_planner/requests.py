@@ -26,7 +26,7 @@ from footstep_planner.errors import RequestRefused
 from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.goals import pull_passage_waypoints, stand_pose_for_opening
 from footstep_planner.legs import Leg, plan_legs
-from footstep_planner.narrow import passage_legs
+from footstep_planner.narrow import PullPassage, passage_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import PlanResult
 from footstep_planner.robot_limits import options_for_walking, planner_options
@@ -102,12 +102,21 @@ class GoalSettings:
     """Goal distance past the door plane (m)."""
     passage_door_angle: float = 1.57
     """Push-door angle assumed while passing: the body pushes the leaf open (rad)."""
+    pull_passage: PullPassage = PullPassage.FACING
+    """How a blocked pull door is passed (:class:`~footstep_planner.narrow.PullPassage`)."""
+    pull_passage_shift: float = 0.14
+    """Sideways: the side-step line from the opening's centre towards the body's back (m)
+    (:func:`~footstep_planner.narrow.hold_leaf_line`)."""
 
     @classmethod
     def from_parameters(cls, parameters: Mapping[str, Any]) -> GoalSettings:
         """The settings among a node's parameters (others are ignored)."""
         names = {field for field in cls.__dataclass_fields__}
-        return cls(**{name: float(value) for name, value in parameters.items() if name in names})
+        values: dict[str, Any] = {name: float(value) for name, value in parameters.items()
+                                  if name in names and name != "pull_passage"}
+        if "pull_passage" in parameters:
+            values["pull_passage"] = PullPassage(parameters["pull_passage"])
+        return cls(**values)
 
 
 @dataclass(frozen=True)
@@ -145,6 +154,8 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
       the stand pose itself keeps the torso out of a pulled leaf's swing;
     * through a PULL door: the other hand blocks the leaf and the walk sweeps it open
       (:func:`~footstep_planner.goals.pull_passage_waypoints`): only wall and posts count;
+      with ``pull_passage`` = sideways the robot then side-steps through still facing the
+      hinge, the hand on the leaf (:func:`~footstep_planner.narrow.hold_leaf_line`);
     * through a PUSH door: the leaf at :func:`passage_angle` is an obstacle.
 
     A doorway narrower than the body is passed sideways
@@ -156,8 +167,9 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
     if door.opening is DoorOpening.PULL:
         poses = pull_passage_waypoints(door, stand_pose(door, options, settings), settings.beyond_door)
         legs = tuple(Leg(pose, name) for pose, name in zip(poses, PULL_LEG_NAMES))
-        sideways = passage_legs(door, options, settings.beyond_door, heading=poses[1].yaw)
-        if len(sideways) > 1:  # narrower than the body: sideways, not facing the doorway
+        held = settings.pull_passage_shift if settings.pull_passage is PullPassage.SIDEWAYS else None
+        sideways = passage_legs(door, options, settings.beyond_door, heading=poses[1].yaw, hold_leaf=held)
+        if len(sideways) > 1:  # sideways (holding the leaf, or narrower than the body), not facing the doorway
             legs = (*legs[:2], *sideways)
         return WalkProblem(start, legs, World(wall_obstacles(door)), door)
     door = door.with_angle(passage_angle(door.angle, settings))
