@@ -8,6 +8,13 @@ prints how it ended and which robot links struck the door hardest — what issue
 know about a fall. ``--trials`` jitters the stand pose by up to ±2 cm and ±1° per trial: a
 single run of a balancing robot proves little.
 
+``--pull-passage`` chooses how a pull door is passed: ``facing`` and ``sideways`` are the
+footstep planner's ``pull_passage`` values; ``tuck`` side-steps facing the hinge with the
+blocking hand on the leaf to ``--tuck-at`` m before the door plane, brings that arm to the
+walking posture (the leaf follows it and comes to rest on the front of the body, far from
+its axis, instead of on the hand near it), and side-steps the rest: a study of a passage
+the FSM does not run yet (issue #11).
+
     python -m door_bringup.passage_rig --openings push pull --hinges left right --trials 3
 """
 
@@ -16,10 +23,12 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
+from enum import Enum
 
 import numpy as np
 
+from door_contract.converters.trajectory import JointPath
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
 from door_contract.vocabulary import DoorOpening, HingeSide, Side, grasp_hand
 from door_robot.kinematics import RobotKinematics
@@ -30,6 +39,10 @@ from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import Backend, MotionLibrary
 from door_trajopt.motions import Motion, MotionSetup, start_door_for, support_polygon
+from footstep_planner.footstep import Pose2D, Stance
+from footstep_planner.legs import Leg
+from footstep_planner.narrow import SIDEWAYS
+from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import PLANNER_PARAMETERS
 from footstep_planner.proposal import contract_footsteps
 from footstep_planner.requests import (
@@ -37,11 +50,13 @@ from footstep_planner.requests import (
     Snapshot,
     WalkGoal,
     WalkPlanners,
+    WalkProblem,
     door_geometry_from_estimate,
     options_for_problem,
     planner_options,
     problem_for_request,
     stand_pose,
+    start_stance,
 )
 
 NODE_DEFAULTS = {spec.name: spec.default for spec in PLANNER_PARAMETERS}
@@ -49,6 +64,16 @@ NODE_DEFAULTS = {spec.name: spec.default for spec in PLANNER_PARAMETERS}
 JITTER = np.array([0.02, 0.02, np.radians(1.0)])
 """Largest stand-pose error a trial adds: along the normal, along the wall (m), yaw (rad)."""
 GRASP, RELEASE = "grasp", "release"
+TUCK_DURATION = 2.0
+"""Seconds the blocking arm takes to the walking posture in a tucked passage."""
+
+
+class PullPassageStudy(Enum):
+    """How the rig passes a pull door (see the module docstring)."""
+
+    FACING = "facing"
+    SIDEWAYS = "sideways"
+    TUCK = "tuck"
 
 
 @dataclass(frozen=True)
@@ -132,29 +157,83 @@ def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstim
     return Motion.READY_TO_WALK.value, "success", ""
 
 
-def walk_through(world: DoorWorld, estimate: DoorEstimate) -> tuple[str, str, dict[str, float]]:
+def walk_through(world: DoorWorld, estimate: DoorEstimate, passage: PullPassageStudy = PullPassageStudy.FACING,
+                 tuck_at: float = 0.45, kinematics: RobotKinematics | None = None) -> tuple[str, str, dict[str, float]]:
     """Plan the passage from the measured feet as the footstep planner node does (the same
-    request, snapshot and planners) and walk it: (status, reason, peak contact forces)."""
-    settings, options = GoalSettings.from_parameters(NODE_DEFAULTS), planner_options("talos", NODE_DEFAULTS)
+    request, snapshot and planners) and walk it: (status, reason, peak contact forces).
+    A tucked pull passage (:class:`PullPassageStudy`) walks it in two parts around the tuck."""
+    parameters = dict(NODE_DEFAULTS)
+    if passage is not PullPassageStudy.FACING:
+        parameters["pull_passage"] = PullPassageStudy.SIDEWAYS.value
+    if passage is PullPassageStudy.TUCK:
+        parameters["pull_passage_shift"] = 0.0  # the hand leaves the leaf before the wall: no pinch to avoid
+    settings, options = GoalSettings.from_parameters(parameters), planner_options("talos", parameters)
     request = FootstepRequest(0, WalkGoal.THROUGH, world.config.door.opening, world.door_state().hinge_angle)
     feet = world.foot_placements()
     snapshot = Snapshot(world.base_pose(), [feet[Side.LEFT], feet[Side.RIGHT]], estimate, None)
     problem = problem_for_request(request, snapshot, options, settings)
-    result, _ = WalkPlanners().plan(problem, options_for_problem(problem, WalkGoal.THROUGH, options))
+    options = options_for_problem(problem, WalkGoal.THROUGH, options)
+    planners, peaks = WalkPlanners(), dict[str, float]()
+    tucked = passage is PullPassageStudy.TUCK and len(problem.legs) == 5 and kinematics is not None
+    rest = problem.legs[3:]  # after the tuck: the side-step through and the turn to face away
+    if tucked:
+        problem = replace(problem, legs=(*problem.legs[:3], _tuck_stop(problem, tuck_at)))
+    status, reason = _walk(world, planners, problem, options, peaks)
+    if tucked and status == OutcomeStatus.SUCCESS.value and kinematics is not None:
+        blocking = grasp_hand(estimate.hinge_side, DoorOpening.PULL).other
+        result = TrajectoryExecution.from_joint_path(world, tuck_path(world, kinematics, blocking)).run()
+        if result.status is not OutcomeStatus.SUCCESS:
+            return f"tuck: {result.status.value}", result.reason, peaks
+        status, reason = _walk(world, planners, replace(problem, start=_measured_stance(world, options), legs=rest),
+                               options, peaks)
+    return status, reason, peaks
+
+
+def _tuck_stop(problem: WalkProblem, tuck_at: float) -> Leg:
+    """The side-step leg cut short ``tuck_at`` m before the door plane, on the same line."""
+    through = problem.legs[3].goal
+    along, _ = problem.door.to_door(through.x, through.y)
+    x, y = problem.door.to_world(along, tuck_at)
+    return Leg(Pose2D(x, y, through.yaw), "side-step to the wall (tuck there)", SIDEWAYS)
+
+
+def tuck_path(world: DoorWorld, kinematics: RobotKinematics, side: Side) -> JointPath:
+    """The ``side`` arm's joints (not the torso) from where they are to the walking posture,
+    linearly over :data:`TUCK_DURATION`."""
+    chain = ArmChain(kinematics, side, kinematics.nominal_q)
+    walking = dict(zip(chain.joint_names, chain.chain_of(kinematics.walking_q)))
+    names = tuple(name for name in kinematics.profile.arm(side).joints
+                  if name not in kinematics.profile.arm(side.other).joints)
+    now = world.joint_positions()
+    start, goal = np.array([now[name] for name in names]), np.array([walking[name] for name in names])
+    times = np.linspace(0.0, TUCK_DURATION, 21)[1:]
+    return JointPath(times, names, np.array([start + (goal - start) * t / TUCK_DURATION for t in times]))
+
+
+def _measured_stance(world: DoorWorld, options: FootstepPlannerOptions) -> Stance:
+    feet = world.foot_placements()
+    left, right = (Pose2D(p.x, p.y, p.yaw) for p in (feet[Side.LEFT], feet[Side.RIGHT]))
+    return start_stance(Pose2D(0.0, 0.0, 0.0), options.nominal_foot_separation, (left, right))
+
+
+def _walk(world: DoorWorld, planners: WalkPlanners, problem: WalkProblem, options: FootstepPlannerOptions,
+          peaks: dict[str, float]) -> tuple[str, str]:
+    """Plan ``problem`` and walk it, recording peak contact forces: (status, reason)."""
+    result, _ = planners.plan(problem, options)
     if not result.succeeded or result.plan is None:
-        return "planning failed", f"{result.outcome.value}: {result.reason}", {}
+        return "planning failed", f"{result.outcome.value}: {result.reason}"
     execution = FootstepExecution(world, contract_footsteps(problem.start, result.plan))
-    peaks: dict[str, float] = {}
     while not execution.command():
         world.step()
         for name, force in world.door_contact_forces().items():
             peaks[name] = max(peaks.get(name, 0.0), force)
     if execution.result is None:  # command() is True once the walk has its result
-        return "failure", "the walk ended without an outcome", peaks
-    return execution.result.status.value, execution.result.reason, peaks
+        return "failure", "the walk ended without an outcome"
+    return execution.result.status.value, execution.result.reason
 
 
-def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics) -> PassageRun:
+def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
+             passage: PullPassageStudy = PullPassageStudy.FACING, tuck_at: float = 0.45) -> PassageRun:
     """One door, its stand pose jittered by ``trial`` (0: none)."""
     rng = np.random.default_rng(trial)
     jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
@@ -164,7 +243,7 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
         peaks: dict[str, float] = {}
         if status == "success":
             stage = "walk through"
-            status, reason, peaks = walk_through(world, estimate)
+            status, reason, peaks = walk_through(world, estimate, passage, tuck_at, kinematics)
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
         return PassageRun(opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle, strikes)
 
@@ -174,15 +253,22 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--openings", nargs="+", choices=[o.value for o in DoorOpening], default=["push", "pull"])
     parser.add_argument("--hinges", nargs="+", choices=[h.value for h in HingeSide], default=["left", "right"])
     parser.add_argument("--trials", type=int, default=1, help="per door; trial 0 is the exact stand pose")
+    parser.add_argument("--pull-passage", choices=[p.value for p in PullPassageStudy], default="facing",
+                        help="how pull doors are passed (module docstring)")
+    parser.add_argument("--tuck-at", type=float, default=0.45,
+                        help="tuck: how far before the door plane the blocking arm is tucked (m)")
     args = parser.parse_args(argv)
     if args.trials < 1:
         parser.error("--trials must be at least 1")
+    if not 0.3 <= args.tuck_at <= 1.0:
+        parser.error("--tuck-at must be within [0.3, 1.0] m (the body turned sideways is 0.4 m wide)")
     kinematics = RobotKinematics(load_profile("talos"))
     runs = []
     for opening in args.openings:
         for hinge in args.hinges:
             for trial in range(args.trials):
-                runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics))
+                runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics,
+                                     PullPassageStudy(args.pull_passage), args.tuck_at))
                 print(runs[-1].line(), flush=True)
     through = sum(run.stage == "walk through" and run.status == "success" for run in runs)
     fell = sum(run.status == OutcomeStatus.FELL.value for run in runs)
