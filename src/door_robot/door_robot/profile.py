@@ -4,6 +4,13 @@ A profile names the URDF, the arm chains (torso + arm joints per side, as DESIGN
 requires: the 7-DOF arm alone could not reach most handles), the hand's tool-centre-point
 (TCP) frame with its grasp offset, the head camera, the feet, the nominal posture and the
 walking limits. Joint limits are read from the URDF itself (:mod:`door_robot.kinematics`).
+
+The head camera frame need not be an optical frame (z forward, x right, y down):
+``head_camera_axes`` says which of its signed axes the camera looks along (``forward``, the
+optical z) and which points down the image (``down``, the optical y); the optical x is
+y × z. G1's ``d435_link`` is an x-forward body frame pitched 0.83 rad down, so
+``{forward: x, down: -z}`` makes its camera look down by that pitch. A profile without it
+leaves the choice to the simulator (the frame axes closest to the base's forward and down).
 """
 
 from __future__ import annotations
@@ -39,6 +46,52 @@ class ExtraFrame:
     xyz: tuple[float, float, float]
 
 
+AXIS_INDEX = {"x": 0, "y": 1, "z": 2}
+"""The frame axes a ``head_camera_axes`` entry may name, with an optional sign (``-z``)."""
+
+
+@dataclass(frozen=True)
+class CameraAxes:
+    """The optical axes in the camera frame's coordinates: ``forward`` (optical z, the
+    viewing direction) and ``down`` (optical y, rows growing); both signed unit frame axes,
+    on different axes. ``right`` (optical x) = down × forward completes the right-handed frame."""
+
+    forward: tuple[float, float, float]
+    down: tuple[float, float, float]
+
+    def __post_init__(self) -> None:
+        for name, axis in (("forward", self.forward), ("down", self.down)):
+            if sorted(abs(v) for v in axis) != [0.0, 0.0, 1.0]:
+                raise RobotModelError(f"head_camera_axes.{name} must be a signed frame axis, got {axis}")
+        if any(f != 0.0 and d != 0.0 for f, d in zip(self.forward, self.down)):
+            raise RobotModelError(f"head_camera_axes: forward {self.forward} and down {self.down} "
+                                  "must be different frame axes")
+
+    @property
+    def right(self) -> tuple[float, float, float]:
+        """Optical x = y × z."""
+        (dx, dy, dz), (fx, fy, fz) = self.down, self.forward
+        return dy * fz - dz * fy, dz * fx - dx * fz, dx * fy - dy * fx
+
+    @classmethod
+    def from_document(cls, document: dict[str, Any]) -> CameraAxes:
+        """From ``{forward: x, down: -z}`` (axis names ``x``, ``y``, ``z``, optionally signed)."""
+        unknown = set(document) - {"forward", "down"}
+        if unknown or len(document) != 2:
+            raise RobotModelError(f"head_camera_axes needs exactly 'forward' and 'down', got {sorted(document)}")
+        return cls(_signed_axis("forward", document["forward"]), _signed_axis("down", document["down"]))
+
+
+def _signed_axis(name: str, label: Any) -> tuple[float, float, float]:
+    text = str(label).strip().lower()
+    sign, letter = (-1.0, text[1:]) if text.startswith("-") else (1.0, text.lstrip("+"))
+    if letter not in AXIS_INDEX:
+        raise RobotModelError(f"head_camera_axes.{name} = {label!r}: expected x, y or z, optionally signed (-z)")
+    axis = [0.0, 0.0, 0.0]
+    axis[AXIS_INDEX[letter]] = sign
+    return axis[0], axis[1], axis[2]
+
+
 @dataclass(frozen=True)
 class WalkingLimits:
     """Footstep limits of the robot ([Banerjee 2015] Sec. II: quasi-static walking)."""
@@ -67,6 +120,7 @@ class RobotProfile:
     walking: WalkingLimits
     walking_posture: dict = field(default_factory=dict)  # joint -> rad over the nominal posture
     extra_frames: dict = field(default_factory=dict)  # frame name -> ExtraFrame (added to every model)
+    head_camera_axes: CameraAxes | None = None  # the optical axes in head_camera_frame; None: the sim's guess
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
@@ -139,4 +193,13 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         walking_posture={name: float(value) for name, value in (document.get("walking_posture") or {}).items()},
         extra_frames={name: ExtraFrame(frame["parent"], _xyz(frame["xyz"]))
                       for name, frame in (document.get("extra_frames") or {}).items()},
+        head_camera_axes=_camera_axes(document.get("head_camera_axes")),
     )
+
+
+def _camera_axes(document: Any) -> CameraAxes | None:
+    if document is None:
+        return None
+    if not isinstance(document, dict):
+        raise RobotModelError(f"head_camera_axes must be a mapping {{forward: …, down: …}}, got {document!r}")
+    return CameraAxes.from_document(document)
