@@ -113,19 +113,25 @@ def _urdf_joint_pitch(urdf_text: str, child_link: str) -> float:
     raise AssertionError(f"no joint with child {child_link}")
 
 
-def test_g1_looks_down_by_its_camera_mounts_pitch():
+@pytest.mark.parametrize("waist", [0.0, None])
+def test_g1_looks_down_by_its_camera_mounts_pitch_less_its_lean(waist):
     """G1's d435_link is an x-forward frame pitched down on the torso (no neck): the camera
-    looks along its x, down by the URDF's pitch, with the image's x to the robot's right; the
-    head pitch moves no torso joint."""
-    with DoorWorld(WorldConfig(robot_profile="g1", stance=STANCE, robot_mode=RobotMode.KINEMATIC)) as world:
+    looks along its x, down by the URDF's pitch (waist upright) less the look posture's lean
+    back (``waist`` None: the profile's), with the image's x to the robot's right; the head
+    pitch moves no torso joint."""
+    overrides = () if waist is None else (("waist_pitch_joint", waist),)
+    config = WorldConfig(robot_profile="g1", stance=STANCE, robot_mode=RobotMode.KINEMATIC,
+                         posture_overrides=overrides)
+    with DoorWorld(config) as world:
         frame = world.profile.head_camera_frame
-        pitch = _urdf_joint_pitch(world.profile.urdf_path.read_text(), frame)
+        lean = world.profile.look_posture["waist_pitch_joint"] if waist is None else waist
+        pitch = _urdf_joint_pitch(world.profile.urdf_path.read_text(), frame) + lean
         optical, base = world.render().camera_pose, world.base_pose()
         link = world.link_pose(frame)
-        np.testing.assert_allclose(optical[:3, 2], link[:3, 0], atol=1e-9)  # looks along the link's x
-        assert np.arcsin(-optical[2, 2]) == pytest.approx(pitch, abs=1e-3)  # 0.83 rad below the horizon
+        np.testing.assert_allclose(optical[:3, 2], link[:3, 0], atol=1e-6)  # looks along the link's x
+        assert np.arcsin(-optical[2, 2]) == pytest.approx(pitch, abs=1e-3)  # below the horizon
         assert optical[:3, 0] @ base[:3, 1] == pytest.approx(-1.0, abs=1e-3)  # x right
-        assert world.joint_positions()["waist_pitch_joint"] == pytest.approx(0.0, abs=1e-9)
+        assert world.joint_positions()["waist_pitch_joint"] == pytest.approx(lean, abs=1e-9)
 
 
 def test_a_profile_without_camera_axes_guesses_them(shared_data):

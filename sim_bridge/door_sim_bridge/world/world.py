@@ -146,11 +146,13 @@ class DoorWorld:
 
     def _initial_posture(self) -> dict[str, float]:
         """Zero (clipped into the limits), then the profile's nominal posture with its walking
-        posture on top (the robot arrives walking), the overrides, and the head pitch on the
-        joint that tilts the camera (unless overridden)."""
+        posture on top (the robot arrives walking) and its look posture (how it stands to look
+        for the door), the overrides, and the head pitch on the neck joint that tilts the
+        camera (unless overridden)."""
         posture = {name: min(max(0.0, limit.lower), limit.upper) for name, limit in self.robot.limits.items()}
         posture.update(self.profile.nominal_posture)
         posture.update(self.profile.walking_posture)
+        posture.update(self.profile.look_posture)
         overrides = dict(self.config.posture_overrides)
         if self._pitch_joint is not None and self._pitch_joint[0] not in overrides:
             name, sign = self._pitch_joint

@@ -11,6 +11,11 @@ optical z) and which points down the image (``down``, the optical y); the optica
 y × z. G1's ``d435_link`` is an x-forward body frame pitched 0.83 rad down, so
 ``{forward: x, down: -z}`` makes its camera look down by that pitch. A profile without it
 leaves the choice to the simulator (the frame axes closest to the base's forward and down).
+
+``look_posture`` (joint → rad over the walking posture) is how the robot stands to look for
+the door. A head camera on a neck is tilted by the neck (the simulator's ``head_pitch``); one
+fixed to the torso is not, and G1's, 48° down, sees the handle only from within ~1 m: it leans
+its torso back instead (the waist pitch).
 """
 
 from __future__ import annotations
@@ -121,6 +126,7 @@ class RobotProfile:
     walking_posture: dict = field(default_factory=dict)  # joint -> rad over the nominal posture
     extra_frames: dict = field(default_factory=dict)  # frame name -> ExtraFrame (added to every model)
     head_camera_axes: CameraAxes | None = None  # the optical axes in head_camera_frame; None: the sim's guess
+    look_posture: dict = field(default_factory=dict)  # joint -> rad over the walking posture, to see the door
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
@@ -190,11 +196,20 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         feet={Side(side): frame for side, frame in document["feet"].items()},
         nominal_posture=posture,
         walking=WalkingLimits(**{k: float(v) for k, v in document["walking"].items()}),
-        walking_posture={name: float(value) for name, value in (document.get("walking_posture") or {}).items()},
+        walking_posture=_posture(document, "walking_posture"),
         extra_frames={name: ExtraFrame(frame["parent"], _xyz(frame["xyz"]))
                       for name, frame in (document.get("extra_frames") or {}).items()},
         head_camera_axes=_camera_axes(document.get("head_camera_axes")),
+        look_posture=_posture(document, "look_posture"),
     )
+
+
+def _posture(document: dict[str, Any], key: str) -> dict[str, float]:
+    """An optional ``joint: rad`` mapping of the profile, finite."""
+    posture = {name: float(value) for name, value in (document.get(key) or {}).items()}
+    if not all(math.isfinite(v) for v in posture.values()):
+        raise RobotModelError(f"{key} contains NaN or infinity")
+    return posture
 
 
 def _camera_axes(document: Any) -> CameraAxes | None:
