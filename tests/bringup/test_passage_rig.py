@@ -15,13 +15,19 @@ def test_the_doors_are_opened_in_the_fsms_order():
 
 
 def test_a_run_says_where_it_ended_and_what_struck_hardest():
-    run = PassageRun(DoorOpening.PULL, HingeSide.RIGHT, 2, "walk through", "fell", "base tilted 35°", 0.97,
+    run = PassageRun("talos", DoorOpening.PULL, HingeSide.RIGHT, 2, "walk through", "fell", "base tilted 35°", 0.97,
                      (("arm_left_3_link | base", 2393.0), ("torso_2_link | leaf", 503.4)))
     line = run.line()
-    assert line.startswith("pull right #2: walk through: fell (base tilted 35°); door 0.97 rad")
+    assert line.startswith("talos pull right #2: walk through: fell (base tilted 35°); door 0.97 rad")
     assert line.endswith("hardest contacts: arm_left_3_link | base 2393 N, torso_2_link | leaf 503 N")
 
 
 def test_no_trials_is_refused():
     with pytest.raises(SystemExit):
         main(["--trials", "0"])
+
+
+def test_an_unknown_robot_is_refused():
+    with pytest.raises(SystemExit) as stopped:
+        main(["--robot", "asimo"])
+    assert stopped.value.code == 2

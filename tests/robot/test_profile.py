@@ -54,3 +54,23 @@ def test_bad_axes_are_refused_naming_the_field(tmp_path, axes, message):
 def test_axes_that_are_not_signed_frame_axes_are_refused():
     with pytest.raises(RobotModelError, match="signed frame axis"):
         CameraAxes(forward=(0.6, 0.8, 0.0), down=(0.0, 0.0, -1.0))
+
+
+def test_talos_grasps_as_the_motion_library_always_did():
+    """Fingers (TCP −z) into the door, closing along y held vertical: x_tcp = y_G, y_tcp = z_G, z_tcp = x_G."""
+    for arm in load_profile("talos").arms.values():
+        np.testing.assert_array_equal(arm.grasp_axes.rotation_in_grasp(),
+                                      np.column_stack([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]))
+
+
+def test_grasp_axes_are_required_and_checked(tmp_path):
+    document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
+    document["arms"]["left"]["grasp_axes"] = {"into_door": "y", "up": "-y"}
+    path = tmp_path / "robot_bad_grasp.yaml"
+    path.write_text(yaml.safe_dump(document))
+    with pytest.raises(RobotModelError, match="grasp_axes: into_door .* different frame axes"):
+        load_profile(str(path))
+    del document["arms"]["left"]["grasp_axes"]
+    path.write_text(yaml.safe_dump(document))
+    with pytest.raises(RobotModelError, match="incomplete: 'grasp_axes'"):
+        load_profile(str(path))

@@ -143,14 +143,3 @@ def test_a_profile_without_camera_axes_guesses_them(shared_data):
             explicit = invert(world.link_pose(frame)) @ world.camera.pose()
             world.robot.reset_joints({name: 0.0 for name in world.joint_positions()})
             np.testing.assert_allclose(optical_offset(world.robot, frame), explicit, atol=1e-6, err_msg=profile)
-
-
-def test_the_walking_posture_fits_the_profiles_body_rectangle():
-    """The footstep planner keeps a centred body_width × body_depth rectangle clear of the
-    door frame: every link of TALOS walking (grippers included) must lie inside it."""
-    with DoorWorld(WorldConfig(stance=StanceConfig(distance=3.0, yaw=0.3))) as sim:
-        extents = sim.body_extents()
-    walking = sim.profile.walking
-    assert max(extents["left"], extents["right"]) <= walking.body_width / 2.0
-    assert max(extents["ahead"], extents["behind"]) <= walking.body_depth / 2.0
-    assert min(extents.values()) > 0.1  # the probes did touch the robot

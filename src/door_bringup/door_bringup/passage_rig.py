@@ -6,9 +6,10 @@ library's motions in the FSM's order (approach, grasp, turn, push | pull and blo
 ready to walk), then the footstep planner's passage, walked by the physical robot. Each run
 prints how it ended and which robot links struck the door hardest — what issue #11 needs to
 know about a fall. ``--trials`` jitters the stand pose by up to ±2 cm and ±1° per trial: a
-single run of a balancing robot proves little.
+single run of a balancing robot proves little. ``--robot`` is the main job's robot option: the
+sim's robot, the kinematics the motions are planned with, and the footstep planner's limits.
 
-    python -m door_bringup.passage_rig --openings push pull --hinges left right --trials 3
+    python -m door_bringup.passage_rig --robot g1 --openings push pull --hinges left right --trials 3
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from door_bringup.robot_option import add_robot_argument, check_robot
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
 from door_contract.vocabulary import DoorOpening, HingeSide, Side, grasp_hand
 from door_robot.kinematics import RobotKinematics
@@ -55,6 +57,7 @@ GRASP, RELEASE = "grasp", "release"
 class PassageRun:
     """How one door ended: ``stage`` is the motion or "walk through" it ended in."""
 
+    robot: str
     opening: DoorOpening
     hinge: HingeSide
     trial: int
@@ -66,7 +69,7 @@ class PassageRun:
 
     def line(self) -> str:
         strikes = ", ".join(f"{name} {force:.0f} N" for name, force in self.strikes) or "none"
-        return (f"{self.opening.value:4s} {self.hinge.value:5s} #{self.trial}: {self.stage}: {self.status}"
+        return (f"{self.robot} {self.opening.value:4s} {self.hinge.value:5s} #{self.trial}: {self.stage}: {self.status}"
                 f"{(' (' + self.reason + ')') if self.reason else ''}; door {self.door_angle:.2f} rad; "
                 f"hardest contacts: {strikes}")
 
@@ -79,16 +82,17 @@ def perfect_estimate(world: DoorWorld) -> DoorEstimate:
                         1.0, 10, "automatic")
 
 
-def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> DoorWorld:
-    """The robot at the stand pose the footstep planner chooses for ``door`` (plus ``offset``:
+def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
+                robot: str = "talos") -> DoorWorld:
+    """``robot`` at the stand pose the footstep planner chooses for ``door`` (plus ``offset``:
     along the door normal, along the wall, yaw), standing on the floor."""
-    with DoorWorld(WorldConfig(door=door)) as probe:
+    with DoorWorld(WorldConfig(robot_profile=robot, door=door)) as probe:
         estimate = perfect_estimate(probe)
     settings = GoalSettings.from_parameters(NODE_DEFAULTS)
-    options = planner_options("talos", NODE_DEFAULTS)
+    options = planner_options(robot, NODE_DEFAULTS)
     geometry = door_geometry_from_estimate(estimate, door.opening, 0.0, settings.handle_standoff)
     stand = stand_pose(geometry, options, settings)
-    return DoorWorld(WorldConfig(door=door, stance=StanceConfig(
+    return DoorWorld(WorldConfig(robot_profile=robot, door=door, stance=StanceConfig(
         distance=-stand.x + offset[0], lateral_offset=stand.y + offset[1], yaw=offset[2])))
 
 
@@ -135,7 +139,8 @@ def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstim
 def walk_through(world: DoorWorld, estimate: DoorEstimate) -> tuple[str, str, dict[str, float]]:
     """Plan the passage from the measured feet as the footstep planner node does (the same
     request, snapshot and planners) and walk it: (status, reason, peak contact forces)."""
-    settings, options = GoalSettings.from_parameters(NODE_DEFAULTS), planner_options("talos", NODE_DEFAULTS)
+    settings = GoalSettings.from_parameters(NODE_DEFAULTS)
+    options = planner_options(world.config.robot_profile, NODE_DEFAULTS)
     request = FootstepRequest(0, WalkGoal.THROUGH, world.config.door.opening, world.door_state().hinge_angle)
     feet = world.foot_placements()
     snapshot = Snapshot(world.base_pose(), [feet[Side.LEFT], feet[Side.RIGHT]], estimate, None)
@@ -155,10 +160,12 @@ def walk_through(world: DoorWorld, estimate: DoorEstimate) -> tuple[str, str, di
 
 
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics) -> PassageRun:
-    """One door, its stand pose jittered by ``trial`` (0: none)."""
+    """One door, its stand pose jittered by ``trial`` (0: none), for the robot of ``kinematics``."""
     rng = np.random.default_rng(trial)
     jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
-    with stand_world(DoorConfig(opening=opening, hinge_side=hinge), (jitter[0], jitter[1], jitter[2])) as world:
+    robot = kinematics.profile.name
+    with stand_world(DoorConfig(opening=opening, hinge_side=hinge), (jitter[0], jitter[1], jitter[2]),
+                     robot) as world:
         estimate = perfect_estimate(world)
         stage, status, reason = open_door(world, kinematics, estimate)
         peaks: dict[str, float] = {}
@@ -166,7 +173,8 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
             stage = "walk through"
             status, reason, peaks = walk_through(world, estimate)
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
-        return PassageRun(opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle, strikes)
+        return PassageRun(robot, opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle,
+                          strikes)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -174,10 +182,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--openings", nargs="+", choices=[o.value for o in DoorOpening], default=["push", "pull"])
     parser.add_argument("--hinges", nargs="+", choices=[h.value for h in HingeSide], default=["left", "right"])
     parser.add_argument("--trials", type=int, default=1, help="per door; trial 0 is the exact stand pose")
+    add_robot_argument(parser, "robot profile (params/robot_<name>.yaml); default talos")
     args = parser.parse_args(argv)
     if args.trials < 1:
         parser.error("--trials must be at least 1")
-    kinematics = RobotKinematics(load_profile("talos"))
+    check_robot(parser, args.robot)
+    kinematics = RobotKinematics(load_profile(args.robot))
     runs = []
     for opening in args.openings:
         for hinge in args.hinges:

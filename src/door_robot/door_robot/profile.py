@@ -25,21 +25,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import yaml
 
 from door_contract.vocabulary import Side
 from door_robot.errors import RobotModelError
 from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
-
-
-@dataclass(frozen=True)
-class ArmSpec:
-    """The joints that move one hand (torso first), its TCP parent frame and grasp offset."""
-
-    joints: tuple[str, ...]
-    tcp_parent_frame: str
-    grasp_offset: tuple[float, float, float]  # m, TCP in the parent frame
-    gripper_joint: str | None = None
 
 
 @dataclass(frozen=True)
@@ -52,7 +43,42 @@ class ExtraFrame:
 
 
 AXIS_INDEX = {"x": 0, "y": 1, "z": 2}
-"""The frame axes a ``head_camera_axes`` entry may name, with an optional sign (``-z``)."""
+"""The frame axes a ``head_camera_axes`` or ``grasp_axes`` entry may name, optionally signed (``-z``)."""
+
+Axis = tuple[float, float, float]
+
+
+def _cross(a: Axis, b: Axis) -> Axis:
+    return a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]
+
+
+def _check_axis_pair(what: str, names: tuple[str, str], axes: tuple[Axis, Axis]) -> None:
+    """Both signed unit frame axes, on different axes (so that they span a right-handed frame)."""
+    for name, axis in zip(names, axes):
+        if sorted(abs(v) for v in axis) != [0.0, 0.0, 1.0]:
+            raise RobotModelError(f"{what}.{name} must be a signed frame axis, got {axis}")
+    if any(a != 0.0 and b != 0.0 for a, b in zip(*axes)):
+        raise RobotModelError(f"{what}: {names[0]} {axes[0]} and {names[1]} {axes[1]} must be different frame axes")
+
+
+def _axis_pair(what: str, names: tuple[str, str], document: Any) -> tuple[Axis, Axis]:
+    """``{<names[0]>: x, <names[1]>: -z}`` as two signed axes (names ``x``, ``y``, ``z``)."""
+    if not isinstance(document, dict):
+        raise RobotModelError(f"{what} must be a mapping {{{names[0]}: …, {names[1]}: …}}, got {document!r}")
+    if set(document) != set(names):
+        raise RobotModelError(f"{what} needs exactly {names[0]!r} and {names[1]!r}, got {sorted(document)}")
+    first, second = (_signed_axis(what, name, document[name]) for name in names)
+    return first, second
+
+
+def _signed_axis(what: str, name: str, label: Any) -> Axis:
+    text = str(label).strip().lower()
+    sign, letter = (-1.0, text[1:]) if text.startswith("-") else (1.0, text.lstrip("+"))
+    if letter not in AXIS_INDEX:
+        raise RobotModelError(f"{what}.{name} = {label!r}: expected x, y or z, optionally signed (-z)")
+    axis = [0.0, 0.0, 0.0]
+    axis[AXIS_INDEX[letter]] = sign
+    return axis[0], axis[1], axis[2]
 
 
 @dataclass(frozen=True)
@@ -61,40 +87,66 @@ class CameraAxes:
     viewing direction) and ``down`` (optical y, rows growing); both signed unit frame axes,
     on different axes. ``right`` (optical x) = down × forward completes the right-handed frame."""
 
-    forward: tuple[float, float, float]
-    down: tuple[float, float, float]
+    forward: Axis
+    down: Axis
 
     def __post_init__(self) -> None:
-        for name, axis in (("forward", self.forward), ("down", self.down)):
-            if sorted(abs(v) for v in axis) != [0.0, 0.0, 1.0]:
-                raise RobotModelError(f"head_camera_axes.{name} must be a signed frame axis, got {axis}")
-        if any(f != 0.0 and d != 0.0 for f, d in zip(self.forward, self.down)):
-            raise RobotModelError(f"head_camera_axes: forward {self.forward} and down {self.down} "
-                                  "must be different frame axes")
+        _check_axis_pair("head_camera_axes", ("forward", "down"), (self.forward, self.down))
 
     @property
-    def right(self) -> tuple[float, float, float]:
+    def right(self) -> Axis:
         """Optical x = y × z."""
-        (dx, dy, dz), (fx, fy, fz) = self.down, self.forward
-        return dy * fz - dz * fy, dz * fx - dx * fz, dx * fy - dy * fx
+        return _cross(self.down, self.forward)
 
     @classmethod
-    def from_document(cls, document: dict[str, Any]) -> CameraAxes:
+    def from_document(cls, document: Any) -> CameraAxes:
         """From ``{forward: x, down: -z}`` (axis names ``x``, ``y``, ``z``, optionally signed)."""
-        unknown = set(document) - {"forward", "down"}
-        if unknown or len(document) != 2:
-            raise RobotModelError(f"head_camera_axes needs exactly 'forward' and 'down', got {sorted(document)}")
-        return cls(_signed_axis("forward", document["forward"]), _signed_axis("down", document["down"]))
+        return cls(*_axis_pair("head_camera_axes", ("forward", "down"), document))
 
 
-def _signed_axis(name: str, label: Any) -> tuple[float, float, float]:
-    text = str(label).strip().lower()
-    sign, letter = (-1.0, text[1:]) if text.startswith("-") else (1.0, text.lstrip("+"))
-    if letter not in AXIS_INDEX:
-        raise RobotModelError(f"head_camera_axes.{name} = {label!r}: expected x, y or z, optionally signed (-z)")
-    axis = [0.0, 0.0, 0.0]
-    axis[AXIS_INDEX[letter]] = sign
-    return axis[0], axis[1], axis[2]
+GRASP_TARGET_AXES = np.column_stack([(-1.0, 0.0, 0.0), (0.0, 0.0, 1.0), (0.0, 1.0, 0.0)])
+"""Where a :class:`GraspAxes`' into_door, up and into_door × up go in the grasp frame."""
+
+
+@dataclass(frozen=True)
+class GraspAxes:
+    """How a hand holds a lever handle, as two signed axes of its TCP frame: ``into_door``
+    points from the palm to the fingertips (into the door while grasping), ``up`` is held
+    vertical (the hand closes along it, around the horizontal lever).
+
+    In the door's grasp frame G (x = the door normal towards the robot, z up, y = z × x) the
+    TCP's axes are then a ↦ −x_G, b ↦ z_G, a × b ↦ (−x_G) × z_G = y_G, so the TCP's
+    orientation in G is R = [−x_G z_G y_G]·[a b a×b]ᵀ (:meth:`rotation_in_grasp`). TALOS's
+    grippers (fingers along −z, closing along y): ``{into_door: -z, up: y}``, R's columns
+    x_tcp = y_G, y_tcp = z_G, z_tcp = x_G."""
+
+    into_door: Axis
+    up: Axis
+
+    def __post_init__(self) -> None:
+        _check_axis_pair("grasp_axes", ("into_door", "up"), (self.into_door, self.up))
+
+    def rotation_in_grasp(self) -> np.ndarray:
+        """R (3×3), the TCP's orientation in the grasp frame: R @ into_door = −x_G, R @ up = z_G."""
+        source = np.column_stack([self.into_door, self.up, _cross(self.into_door, self.up)])
+        return GRASP_TARGET_AXES @ source.T
+
+    @classmethod
+    def from_document(cls, document: Any) -> GraspAxes:
+        """From ``{into_door: -z, up: y}``."""
+        return cls(*_axis_pair("grasp_axes", ("into_door", "up"), document))
+
+
+@dataclass(frozen=True)
+class ArmSpec:
+    """The joints that move one hand (torso first), its TCP parent frame and grasp offset, and
+    how the hand is turned to hold a lever (:class:`GraspAxes`)."""
+
+    joints: tuple[str, ...]
+    tcp_parent_frame: str
+    grasp_offset: Axis  # m, TCP in the parent frame
+    grasp_axes: GraspAxes
+    gripper_joint: str | None = None
 
 
 @dataclass(frozen=True)
@@ -181,7 +233,7 @@ def _xyz(values: Any) -> tuple[float, float, float]:
 
 def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
     arms = {Side(side): ArmSpec(tuple(arm["joints"]), arm["tcp_parent_frame"], _xyz(arm["grasp_offset"]),
-                                arm.get("gripper_joint"))
+                                GraspAxes.from_document(arm["grasp_axes"]), arm.get("gripper_joint"))
             for side, arm in document["arms"].items()}
     posture = {name: float(value) for name, value in document["nominal_posture"].items()}
     if not all(math.isfinite(v) for v in posture.values()):
@@ -213,8 +265,4 @@ def _posture(document: dict[str, Any], key: str) -> dict[str, float]:
 
 
 def _camera_axes(document: Any) -> CameraAxes | None:
-    if document is None:
-        return None
-    if not isinstance(document, dict):
-        raise RobotModelError(f"head_camera_axes must be a mapping {{forward: …, down: …}}, got {document!r}")
-    return CameraAxes.from_document(document)
+    return None if document is None else CameraAxes.from_document(document)
