@@ -4,9 +4,10 @@ The graph takes ~3 min per door; this runs the same cores in one process in ~10 
 detector (the sim's ground truth), the stand pose the footstep planner chooses, the motion
 library's motions in the FSM's order (approach, grasp, turn, push | pull and block, release,
 ready to walk), then the footstep planner's passage, walked by the physical robot. Each run
-prints how it ended and which robot links struck the door hardest — what issue #11 needs to
-know about a fall. ``--trials`` jitters the stand pose by up to ±2 cm and ±1° per trial: a
-single run of a balancing robot proves little. ``--robot`` is the main job's robot option: the
+prints how it ended and which robot links struck the door hardest (in the walk through, or
+while opening when it stopped there) — what issue #11 needs to know about a fall. ``--trials``
+jitters the stand pose by up to ±2 cm and ±1° per trial: a single run of a balancing robot
+proves little. ``--robot`` is the main job's robot option: the
 sim's robot, the kinematics the motions are planned with, and the footstep planner's limits.
 
     python -m door_bringup.passage_rig --robot g1 --openings push pull --hinges left right --trials 3
@@ -26,7 +27,7 @@ from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
 from door_contract.vocabulary import DoorOpening, HingeSide, Side, grasp_hand
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
-from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
+from door_sim_bridge.execution import ExecutionResult, FootstepExecution, TrajectoryExecution
 from door_sim_bridge.world import DoorConfig, DoorWorld, StanceConfig, WorldConfig
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
@@ -113,8 +114,21 @@ def opening_sequence(opening: DoorOpening) -> tuple[Motion | str, ...]:
     return (Motion.APPROACH_HANDLE, GRASP, Motion.TURN_HANDLE, *swing, RELEASE, Motion.READY_TO_WALK)
 
 
-def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate) -> tuple[str, str, str]:
-    """Run the opening sequence; (stage, status, reason) of the step it stopped in, or of the last."""
+def run_recording(world: DoorWorld, execution: FootstepExecution | TrajectoryExecution,
+                  peaks: dict[str, float]) -> ExecutionResult | None:
+    """Step ``execution`` to its end, keeping the peak normal force of every robot-door contact
+    in ``peaks``; its result (None: it ended without one)."""
+    while not execution.command():
+        world.step()
+        for name, force in world.door_contact_forces().items():
+            peaks[name] = max(peaks.get(name, 0.0), force)
+    return execution.result
+
+
+def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate,
+              peaks: dict[str, float]) -> tuple[str, str, str]:
+    """Run the opening sequence; (stage, status, reason) of the step it stopped in, or of the
+    last; the contacts' peak forces go into ``peaks``."""
     opening = world.config.door.opening
     hand, library, door_angle = grasp_hand(estimate.hinge_side, opening), MotionLibrary(), 0.0
     for step in opening_sequence(opening):
@@ -129,7 +143,9 @@ def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstim
         plan = library.plan(step, setup, setup.chain.chain_of(setup.chain.body_q), Backend.SQP)
         if not plan.succeeded or plan.path is None:
             return step.value, "planning failed", plan.result.message
-        result = TrajectoryExecution.from_joint_path(world, plan.path).run()
+        result = run_recording(world, TrajectoryExecution.from_joint_path(world, plan.path), peaks)
+        if result is None:
+            return step.value, "failure", "the motion ended without an outcome"
         if result.status is not OutcomeStatus.SUCCESS:
             return step.value, result.status.value, result.reason
         door_angle = float(plan.final_door[0])
@@ -148,15 +164,11 @@ def walk_through(world: DoorWorld, estimate: DoorEstimate) -> tuple[str, str, di
     result, _ = WalkPlanners().plan(problem, options_for_problem(problem, WalkGoal.THROUGH, options))
     if not result.succeeded or result.plan is None:
         return "planning failed", f"{result.outcome.value}: {result.reason}", {}
-    execution = FootstepExecution(world, contract_footsteps(problem.start, result.plan))
     peaks: dict[str, float] = {}
-    while not execution.command():
-        world.step()
-        for name, force in world.door_contact_forces().items():
-            peaks[name] = max(peaks.get(name, 0.0), force)
-    if execution.result is None:  # command() is True once the walk has its result
+    walked = run_recording(world, FootstepExecution(world, contract_footsteps(problem.start, result.plan)), peaks)
+    if walked is None:
         return "failure", "the walk ended without an outcome", peaks
-    return execution.result.status.value, execution.result.reason, peaks
+    return walked.status.value, walked.reason, peaks
 
 
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics) -> PassageRun:
@@ -167,9 +179,9 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
     with stand_world(DoorConfig(opening=opening, hinge_side=hinge), (jitter[0], jitter[1], jitter[2]),
                      robot) as world:
         estimate = perfect_estimate(world)
-        stage, status, reason = open_door(world, kinematics, estimate)
         peaks: dict[str, float] = {}
-        if status == "success":
+        stage, status, reason = open_door(world, kinematics, estimate, peaks)
+        if status == "success":  # the walk's contacts are the ones that matter then
             stage = "walk through"
             status, reason, peaks = walk_through(world, estimate)
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
