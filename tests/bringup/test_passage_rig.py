@@ -20,10 +20,10 @@ def test_the_doors_are_opened_in_the_fsms_order():
 
 
 def test_a_run_says_where_it_ended_and_what_struck_hardest():
-    run = PassageRun(DoorOpening.PULL, HingeSide.RIGHT, 2, "walk through", "fell", "base tilted 35°", 0.97,
+    run = PassageRun("talos", DoorOpening.PULL, HingeSide.RIGHT, 2, "walk through", "fell", "base tilted 35°", 0.97,
                      (("arm_left_3_link | base", 2393.0), ("torso_2_link | leaf", 503.4)))
     line = run.line()
-    assert line.startswith("pull right #2: walk through: fell (base tilted 35°); door 0.97 rad")
+    assert line.startswith("talos pull right #2: walk through: fell (base tilted 35°); door 0.97 rad")
     assert line.endswith("hardest contacts: arm_left_3_link | base 2393 N, torso_2_link | leaf 503 N")
 
 
@@ -51,3 +51,9 @@ def test_the_tuck_takes_the_blocking_arm_alone_to_the_walking_posture():
     assert path.times[-1] == pytest.approx(TUCK_DURATION)
     first_step = np.abs(path.positions[0] - [now[name] for name in path.joint_names])
     assert first_step.max() <= np.abs(path.positions[-1] - [now[name] for name in path.joint_names]).max() / 10 + 1e-9
+
+
+def test_an_unknown_robot_is_refused():
+    with pytest.raises(SystemExit) as stopped:
+        main(["--robot", "asimo"])
+    assert stopped.value.code == 2

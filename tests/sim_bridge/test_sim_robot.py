@@ -4,6 +4,8 @@ The kinematic robot (fixed base) is teleported to random poses here; the physica
 placement and standing are tested in test_sim_walking.py.
 """
 
+import xml.etree.ElementTree as ElementTree
+
 import numpy as np
 import pytest
 
@@ -12,6 +14,8 @@ from door_contract.vocabulary import Foot, Side
 from door_robot.kinematics import RobotKinematics
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.world import DoorWorld, RobotMode, StanceConfig, WorldConfig
+from door_sim_bridge.world.camera import optical_offset
+from door_sim_bridge.world.transforms import invert
 
 STANCE = StanceConfig(distance=2.0, lateral_offset=0.35, yaw=0.4)
 
@@ -101,15 +105,41 @@ def test_the_seed_papers_robots_work_from_their_profiles(shared_data, profile):
         assert optical[:3, 0] @ world.base_pose()[:3, 1] == pytest.approx(-1.0, abs=0.05)  # x right
 
 
-def test_the_walking_posture_fits_the_profiles_body_rectangle():
-    """The footstep planner keeps a body_width × body_depth rectangle, its centre body_offset
-    ahead of the base, clear of the door frame: every link of TALOS walking (grippers
-    included) must lie inside it, and it is no more than 2 cm deeper than the robot."""
-    with DoorWorld(WorldConfig(stance=StanceConfig(distance=3.0, yaw=0.3))) as sim:
-        extents = sim.body_extents()
-    walking = sim.profile.walking
-    assert max(extents["left"], extents["right"]) <= walking.body_width / 2.0
-    assert extents["ahead"] <= walking.body_depth / 2.0 + walking.body_offset
-    assert extents["behind"] <= walking.body_depth / 2.0 - walking.body_offset
-    assert walking.body_depth - (extents["ahead"] + extents["behind"]) < 0.02
-    assert min(extents.values()) > 0.1  # the probes did touch the robot
+def _urdf_joint_pitch(urdf_text: str, child_link: str) -> float:
+    """The pitch (rpy[1]) of the fixed joint whose child is ``child_link``."""
+    for joint in ElementTree.fromstring(urdf_text).iter("joint"):
+        if joint.find("child").get("link") == child_link:
+            return float(joint.find("origin").get("rpy").split()[1])
+    raise AssertionError(f"no joint with child {child_link}")
+
+
+@pytest.mark.parametrize("waist", [0.0, None])
+def test_g1_looks_down_by_its_camera_mounts_pitch_less_its_lean(waist):
+    """G1's d435_link is an x-forward frame pitched down on the torso (no neck): the camera
+    looks along its x, down by the URDF's pitch (waist upright) less the look posture's lean
+    back (``waist`` None: the profile's), with the image's x to the robot's right; the head
+    pitch moves no torso joint."""
+    overrides = () if waist is None else (("waist_pitch_joint", waist),)
+    config = WorldConfig(robot_profile="g1", stance=STANCE, robot_mode=RobotMode.KINEMATIC,
+                         posture_overrides=overrides)
+    with DoorWorld(config) as world:
+        frame = world.profile.head_camera_frame
+        lean = world.profile.look_posture["waist_pitch_joint"] if waist is None else waist
+        pitch = _urdf_joint_pitch(world.profile.urdf_path.read_text(), frame) + lean
+        optical, base = world.render().camera_pose, world.base_pose()
+        link = world.link_pose(frame)
+        np.testing.assert_allclose(optical[:3, 2], link[:3, 0], atol=1e-6)  # looks along the link's x
+        assert np.arcsin(-optical[2, 2]) == pytest.approx(pitch, abs=1e-3)  # below the horizon
+        assert optical[:3, 0] @ base[:3, 1] == pytest.approx(-1.0, abs=1e-3)  # x right
+        assert world.joint_positions()["waist_pitch_joint"] == pytest.approx(lean, abs=1e-9)
+
+
+def test_a_profile_without_camera_axes_guesses_them(shared_data):
+    """The explicit axes of TALOS, Atlas and DRC-HUBO are what the simulator guessed before
+    (the frame axes nearest forward and down in the zero posture): their cameras are unchanged."""
+    for profile in ("talos", "atlas_v4", "drc_hubo"):
+        with DoorWorld(WorldConfig(robot_profile=profile, stance=STANCE, robot_mode=RobotMode.KINEMATIC)) as world:
+            frame = world.profile.head_camera_frame
+            explicit = invert(world.link_pose(frame)) @ world.camera.pose()
+            world.robot.reset_joints({name: 0.0 for name in world.joint_positions()})
+            np.testing.assert_allclose(optical_offset(world.robot, frame), explicit, atol=1e-6, err_msg=profile)

@@ -2,10 +2,14 @@
 
 The camera sits at the profile's ``head_camera_frame``. That frame may be an optical frame
 (z forward, x right, y down; TALOS's ``rgbd_rgb_optical_frame``) or a body frame (Atlas's
-``head``: x forward, z up; DRC-HUBO's ``Body_NKP``, turned by pi: x backward). The optical
-frame is therefore fixed to it once, in the zero posture: its z is the frame axis (±x, ±y, ±z)
-closest to the base's forward axis, its y the one closest to straight down, x = y × z
-(:func:`optical_offset`; the identity for a true optical frame). OpenGL's camera looks along
+``head``: x forward, z up; DRC-HUBO's ``Body_NKP``, turned by pi: x backward; G1's
+``d435_link``: x forward, pitched 0.83 rad down). The optical frame is fixed to it once
+(:func:`optical_offset`): z along the profile's ``head_camera_axes.forward``, y along its
+``down``, x = y × z. A profile without ``head_camera_axes`` gets a guess made in the zero
+posture: z the frame axis (±x, ±y, ±z) closest to the base's forward axis, y the one closest
+to straight down (the identity for a true optical frame). The guess is wrong for a frame
+pitched more than 45°: for G1's it picks z, and the camera would look 42° up instead of 48°
+down. OpenGL's camera looks along
 its -z with y up, i.e. the optical frame turned by pi about x; the view matrix is built from
 the optical pose accordingly.
 
@@ -37,6 +41,7 @@ import numpy as np
 import pybullet
 
 from door_contract.converters.camera_info import CameraIntrinsics
+from door_robot.profile import CameraAxes
 from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import CameraConfig
 from door_sim_bridge.world.robot import SimRobot
@@ -54,11 +59,15 @@ def _closest_axis(rotation: np.ndarray, direction: np.ndarray) -> np.ndarray:
     return axis
 
 
-def optical_offset(robot: SimRobot, camera_link: str) -> np.ndarray:
-    """The optical frame in ``camera_link``'s frame (call in the zero posture, see the module doc)."""
-    base, camera = robot.base_pose(), robot.link_pose(camera_link)
-    forward = _closest_axis(camera[:3, :3], base[:3, 0])
-    down = _closest_axis(camera[:3, :3], -base[:3, 2])
+def optical_offset(robot: SimRobot, camera_link: str, axes: CameraAxes | None = None) -> np.ndarray:
+    """The optical frame in ``camera_link``'s frame: from ``axes`` (the profile's
+    ``head_camera_axes``), else guessed (call in the zero posture, see the module doc)."""
+    if axes is not None:
+        forward, down = np.asarray(axes.forward, dtype=float), np.asarray(axes.down, dtype=float)
+    else:
+        base, camera = robot.base_pose(), robot.link_pose(camera_link)
+        forward = _closest_axis(camera[:3, :3], base[:3, 0])
+        down = _closest_axis(camera[:3, :3], -base[:3, 2])
     offset = np.eye(4)
     offset[:3, :3] = np.column_stack([np.cross(down, forward), down, forward])
     return offset

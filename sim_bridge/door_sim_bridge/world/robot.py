@@ -274,13 +274,17 @@ class SimRobot:
                 self._client.changeVisualShape(self.body, index, rgbaColor=[0.5, 0.5, 0.5, 0.0])
 
     def pitch_joint(self, camera_link: str, optical_x: np.ndarray) -> tuple[str, float] | None:
-        """The joint nearest the camera whose axis is the camera's optical x axis, and its sign.
+        """The neck joint nearest the camera whose axis is the camera's optical x axis, and its sign.
 
         Rotating about the optical +x by a positive angle tilts the view up, so a joint whose
         axis is along +x_optical must turn by ``-pitch`` to look down by ``pitch``: the sign
-        returned is the joint angle per radian of downward tilt.
+        returned is the joint angle per radian of downward tilt. Joints of the arm chains
+        (torso joints) are not the neck's, as in ``door_detection.neck``: a robot without a
+        neck (G1, its camera fixed to the torso) has no pitch joint and looks where its
+        camera is mounted.
         """
-        names = {self.joint_link_index(n): n for n in self.joint_names}
+        arm_joints = {joint for arm in self.profile.arms.values() for joint in arm.joints}
+        names = {self.joint_link_index(n): n for n in self.joint_names if n not in arm_joints}
         for index in self.chain_to_root(self.link_index(camera_link)):
             if index in names:
                 alignment = float(self.joint_axis_world(index) @ optical_x)

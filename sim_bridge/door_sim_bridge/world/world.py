@@ -4,7 +4,8 @@
 :mod:`door_sim_bridge.world.door` for the door's): world frame = ``odom``; the robot starts
 on the x < 0 side at x = -stance.distance, y = stance.lateral_offset, yawed by stance.yaw from
 facing +x, its soles on the floor, joints in the profile's nominal posture with the head
-pitched down by ``camera.head_pitch``.
+pitched down by ``camera.head_pitch`` (by its neck; a robot without one looks where its camera
+is mounted).
 
 The robot is **physical** by default (:class:`~door_sim_bridge.world.config.RobotMode`): a
 floating base standing on a collision floor, whose walking controller
@@ -109,7 +110,7 @@ class DoorWorld:
         if physical:
             self._set_sole_friction(self.config.floor_friction)
         camera_frame = self.profile.head_camera_frame
-        self._optical = optical_offset(self.robot, camera_frame)  # in the zero posture
+        self._optical = optical_offset(self.robot, camera_frame, self.profile.head_camera_axes)  # zero posture
         optical_x = (self.robot.link_pose(camera_frame) @ self._optical)[:3, 0]
         self._pitch_joint = self.robot.pitch_joint(camera_frame, optical_x)
         self._place_robot(self.config.stance)
@@ -145,11 +146,13 @@ class DoorWorld:
 
     def _initial_posture(self) -> dict[str, float]:
         """Zero (clipped into the limits), then the profile's nominal posture with its walking
-        posture on top (the robot arrives walking), the overrides, and the head pitch on the
-        joint that tilts the camera (unless overridden)."""
+        posture on top (the robot arrives walking) and its look posture (how it stands to look
+        for the door), the overrides, and the head pitch on the neck joint that tilts the
+        camera (unless overridden)."""
         posture = {name: min(max(0.0, limit.lower), limit.upper) for name, limit in self.robot.limits.items()}
         posture.update(self.profile.nominal_posture)
         posture.update(self.profile.walking_posture)
+        posture.update(self.profile.look_posture)
         overrides = dict(self.config.posture_overrides)
         if self._pitch_joint is not None and self._pitch_joint[0] not in overrides:
             name, sign = self._pitch_joint

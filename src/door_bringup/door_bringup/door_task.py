@@ -33,9 +33,10 @@ from rclpy.node import Node
 from std_msgs.msg import String
 
 from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH, NodeLaunch
-from door_bringup.params_files import ROBOT_PARAMETER, robot_names, robot_nodes
+from door_bringup.params_files import ROBOT_PARAMETER, robot_nodes
 from door_bringup.processes import ProcessSupervisor
 from door_bringup.progress_monitor import ProgressMonitor
+from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.run_plots import plot_run
 from door_bringup.table_one import format_table, phase_rows
 from door_bringup.workspace import Workspace, repository_root
@@ -44,8 +45,6 @@ from door_contract.node_support import create_contract_publisher, create_contrac
 from door_contract.payloads import TaskReport, decode
 from door_contract.topics import Topics
 from door_fsm.operator_commands import request_id_of
-from door_robot.errors import RobotModelError
-from door_robot.profile import load_profile
 
 RECORDER = NodeLaunch("door_bringup", "bag_record", "bag_recorder")
 
@@ -234,21 +233,6 @@ def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
                           camera_rate=args.camera_rate, compression=args.compression,
                           foxglove_port=args.foxglove_port if args.foxglove else None)
     return options, args.run_dir
-
-
-def add_robot_argument(parser: argparse.ArgumentParser) -> None:
-    """``--robot NAME``: one of the robot profiles there are (default TALOS)."""
-    parser.add_argument("--robot", choices=robot_names(), default="talos",
-                        help="robot profile (params/robot_<name>.yaml) of every node that takes one")
-
-
-def check_robot(parser: argparse.ArgumentParser, robot: str) -> None:
-    """Refuse (exit 2) a profile that cannot be loaded, e.g. a URDF from ../shared that is absent,
-    before any node starts: each would otherwise stop on the same parameter error."""
-    try:
-        load_profile(robot)
-    except RobotModelError as error:
-        parser.error(f"--robot {robot}: {error}")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -30,7 +30,8 @@ from pathlib import Path
 
 import numpy as np
 
-from door_bringup.door_task import TaskOptions, add_robot_argument, check_robot, run_task
+from door_bringup.door_task import TaskOptions, run_task
+from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.table_one import format_table, phase_of, phase_rows
 from door_bringup.workspace import Workspace, repository_root
 

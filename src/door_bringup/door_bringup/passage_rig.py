@@ -4,9 +4,11 @@ The graph takes ~3 min per door; this runs the same cores in one process in ~10 
 detector (the sim's ground truth), the stand pose the footstep planner chooses, the motion
 library's motions in the FSM's order (approach, grasp, turn, push | pull and block, release,
 ready to walk), then the footstep planner's passage, walked by the physical robot. Each run
-prints how it ended and which robot links struck the door hardest — what issue #11 needs to
-know about a fall. ``--trials`` jitters the stand pose by up to ±2 cm and ±1° per trial: a
-single run of a balancing robot proves little.
+prints how it ended and which robot links struck the door hardest (in the walk through, or
+while opening when it stopped there) — what issue #11 needs to know about a fall. ``--trials``
+jitters the stand pose by up to ±2 cm and ±1° per trial: a single run of a balancing robot
+proves little. ``--robot`` is the main job's robot option: the
+sim's robot, the kinematics the motions are planned with, and the footstep planner's limits.
 
 ``--pull-passage`` chooses how a pull door is passed: ``facing`` and ``sideways`` are the
 footstep planner's ``pull_passage`` values; ``tuck`` side-steps facing the hinge with the
@@ -15,7 +17,8 @@ walking posture (the leaf follows it and comes to rest on the front of the body,
 its axis, instead of on the hand near it), and side-steps the rest: a study of a passage
 the FSM does not run yet (issue #11).
 
-    python -m door_bringup.passage_rig --openings push pull --hinges left right --trials 3
+    python -m door_bringup.passage_rig --robot g1 --openings push pull --hinges left right --trials 3
+    python -m door_bringup.passage_rig --openings pull --pull-passage tuck --trials 5
 """
 
 from __future__ import annotations
@@ -28,12 +31,13 @@ from enum import Enum
 
 import numpy as np
 
+from door_bringup.robot_option import add_robot_argument, check_robot
 from door_contract.converters.trajectory import JointPath
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
 from door_contract.vocabulary import DoorOpening, HingeSide, Side, grasp_hand
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
-from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
+from door_sim_bridge.execution import ExecutionResult, FootstepExecution, TrajectoryExecution
 from door_sim_bridge.world import DoorConfig, DoorWorld, StanceConfig, WorldConfig
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
@@ -80,6 +84,7 @@ class PullPassageStudy(Enum):
 class PassageRun:
     """How one door ended: ``stage`` is the motion or "walk through" it ended in."""
 
+    robot: str
     opening: DoorOpening
     hinge: HingeSide
     trial: int
@@ -91,7 +96,7 @@ class PassageRun:
 
     def line(self) -> str:
         strikes = ", ".join(f"{name} {force:.0f} N" for name, force in self.strikes) or "none"
-        return (f"{self.opening.value:4s} {self.hinge.value:5s} #{self.trial}: {self.stage}: {self.status}"
+        return (f"{self.robot} {self.opening.value:4s} {self.hinge.value:5s} #{self.trial}: {self.stage}: {self.status}"
                 f"{(' (' + self.reason + ')') if self.reason else ''}; door {self.door_angle:.2f} rad; "
                 f"hardest contacts: {strikes}")
 
@@ -104,16 +109,17 @@ def perfect_estimate(world: DoorWorld) -> DoorEstimate:
                         1.0, 10, "automatic")
 
 
-def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> DoorWorld:
-    """The robot at the stand pose the footstep planner chooses for ``door`` (plus ``offset``:
+def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
+                robot: str = "talos") -> DoorWorld:
+    """``robot`` at the stand pose the footstep planner chooses for ``door`` (plus ``offset``:
     along the door normal, along the wall, yaw), standing on the floor."""
-    with DoorWorld(WorldConfig(door=door)) as probe:
+    with DoorWorld(WorldConfig(robot_profile=robot, door=door)) as probe:
         estimate = perfect_estimate(probe)
     settings = GoalSettings.from_parameters(NODE_DEFAULTS)
-    options = planner_options("talos", NODE_DEFAULTS)
+    options = planner_options(robot, NODE_DEFAULTS)
     geometry = door_geometry_from_estimate(estimate, door.opening, 0.0, settings.handle_standoff)
     stand = stand_pose(geometry, options, settings)
-    return DoorWorld(WorldConfig(door=door, stance=StanceConfig(
+    return DoorWorld(WorldConfig(robot_profile=robot, door=door, stance=StanceConfig(
         distance=-stand.x + offset[0], lateral_offset=stand.y + offset[1], yaw=offset[2])))
 
 
@@ -134,8 +140,21 @@ def opening_sequence(opening: DoorOpening) -> tuple[Motion | str, ...]:
     return (Motion.APPROACH_HANDLE, GRASP, Motion.TURN_HANDLE, *swing, RELEASE, Motion.READY_TO_WALK)
 
 
-def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate) -> tuple[str, str, str]:
-    """Run the opening sequence; (stage, status, reason) of the step it stopped in, or of the last."""
+def run_recording(world: DoorWorld, execution: FootstepExecution | TrajectoryExecution,
+                  peaks: dict[str, float]) -> ExecutionResult | None:
+    """Step ``execution`` to its end, keeping the peak normal force of every robot-door contact
+    in ``peaks``; its result (None: it ended without one)."""
+    while not execution.command():
+        world.step()
+        for name, force in world.door_contact_forces().items():
+            peaks[name] = max(peaks.get(name, 0.0), force)
+    return execution.result
+
+
+def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate,
+              peaks: dict[str, float]) -> tuple[str, str, str]:
+    """Run the opening sequence; (stage, status, reason) of the step it stopped in, or of the
+    last; the contacts' peak forces go into ``peaks``."""
     opening = world.config.door.opening
     hand, library, door_angle = grasp_hand(estimate.hinge_side, opening), MotionLibrary(), 0.0
     for step in opening_sequence(opening):
@@ -150,7 +169,9 @@ def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstim
         plan = library.plan(step, setup, setup.chain.chain_of(setup.chain.body_q), Backend.SQP)
         if not plan.succeeded or plan.path is None:
             return step.value, "planning failed", plan.result.message
-        result = TrajectoryExecution.from_joint_path(world, plan.path).run()
+        result = run_recording(world, TrajectoryExecution.from_joint_path(world, plan.path), peaks)
+        if result is None:
+            return step.value, "failure", "the motion ended without an outcome"
         if result.status is not OutcomeStatus.SUCCESS:
             return step.value, result.status.value, result.reason
         door_angle = float(plan.final_door[0])
@@ -167,7 +188,8 @@ def walk_through(world: DoorWorld, estimate: DoorEstimate, passage: PullPassageS
         parameters["pull_passage"] = PullPassageStudy.SIDEWAYS.value
     if passage is PullPassageStudy.TUCK:
         parameters["pull_passage_shift"] = 0.0  # the hand leaves the leaf before the wall: no pinch to avoid
-    settings, options = GoalSettings.from_parameters(parameters), planner_options("talos", parameters)
+    settings = GoalSettings.from_parameters(parameters)
+    options = planner_options(world.config.robot_profile, parameters)
     request = FootstepRequest(0, WalkGoal.THROUGH, world.config.door.opening, world.door_state().hinge_angle)
     feet = world.foot_placements()
     snapshot = Snapshot(world.base_pose(), [feet[Side.LEFT], feet[Side.RIGHT]], estimate, None)
@@ -181,9 +203,10 @@ def walk_through(world: DoorWorld, estimate: DoorEstimate, passage: PullPassageS
     status, reason = _walk(world, planners, problem, options, peaks)
     if tucked and status == OutcomeStatus.SUCCESS.value and kinematics is not None:
         blocking = grasp_hand(estimate.hinge_side, DoorOpening.PULL).other
-        result = TrajectoryExecution.from_joint_path(world, tuck_path(world, kinematics, blocking)).run()
-        if result.status is not OutcomeStatus.SUCCESS:
-            return f"tuck: {result.status.value}", result.reason, peaks
+        tuck = run_recording(world, TrajectoryExecution.from_joint_path(world, tuck_path(world, kinematics, blocking)),
+                             peaks)
+        if tuck is None or tuck.status is not OutcomeStatus.SUCCESS:
+            return "tuck: " + (tuck.status.value if tuck else "failure"), tuck.reason if tuck else "", peaks
         status, reason = _walk(world, planners, replace(problem, start=_measured_stance(world, options), legs=rest),
                                options, peaks)
     return status, reason, peaks
@@ -198,8 +221,8 @@ def _tuck_stop(problem: WalkProblem, tuck_at: float) -> Leg:
 
 
 def tuck_path(world: DoorWorld, kinematics: RobotKinematics, side: Side) -> JointPath:
-    """The ``side`` arm's joints (not the torso) from where they are to the walking posture,
-    linearly over :data:`TUCK_DURATION`."""
+    """The ``side`` arm's joints (not the torso, which the other arm shares) from where they are
+    to the walking posture, linearly over :data:`TUCK_DURATION`."""
     chain = ArmChain(kinematics, side, kinematics.nominal_q)
     walking = dict(zip(chain.joint_names, chain.chain_of(kinematics.walking_q)))
     names = tuple(name for name in kinematics.profile.arm(side).joints
@@ -222,30 +245,29 @@ def _walk(world: DoorWorld, planners: WalkPlanners, problem: WalkProblem, option
     result, _ = planners.plan(problem, options)
     if not result.succeeded or result.plan is None:
         return "planning failed", f"{result.outcome.value}: {result.reason}"
-    execution = FootstepExecution(world, contract_footsteps(problem.start, result.plan))
-    while not execution.command():
-        world.step()
-        for name, force in world.door_contact_forces().items():
-            peaks[name] = max(peaks.get(name, 0.0), force)
-    if execution.result is None:  # command() is True once the walk has its result
+    walked = run_recording(world, FootstepExecution(world, contract_footsteps(problem.start, result.plan)), peaks)
+    if walked is None:
         return "failure", "the walk ended without an outcome"
-    return execution.result.status.value, execution.result.reason
+    return walked.status.value, walked.reason
 
 
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
              passage: PullPassageStudy = PullPassageStudy.FACING, tuck_at: float = 0.45) -> PassageRun:
-    """One door, its stand pose jittered by ``trial`` (0: none)."""
+    """One door, its stand pose jittered by ``trial`` (0: none), for the robot of ``kinematics``."""
     rng = np.random.default_rng(trial)
     jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
-    with stand_world(DoorConfig(opening=opening, hinge_side=hinge), (jitter[0], jitter[1], jitter[2])) as world:
+    robot = kinematics.profile.name
+    with stand_world(DoorConfig(opening=opening, hinge_side=hinge), (jitter[0], jitter[1], jitter[2]),
+                     robot) as world:
         estimate = perfect_estimate(world)
-        stage, status, reason = open_door(world, kinematics, estimate)
         peaks: dict[str, float] = {}
-        if status == "success":
+        stage, status, reason = open_door(world, kinematics, estimate, peaks)
+        if status == "success":  # the walk's contacts are the ones that matter then
             stage = "walk through"
             status, reason, peaks = walk_through(world, estimate, passage, tuck_at, kinematics)
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
-        return PassageRun(opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle, strikes)
+        return PassageRun(robot, opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle,
+                          strikes)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -253,6 +275,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--openings", nargs="+", choices=[o.value for o in DoorOpening], default=["push", "pull"])
     parser.add_argument("--hinges", nargs="+", choices=[h.value for h in HingeSide], default=["left", "right"])
     parser.add_argument("--trials", type=int, default=1, help="per door; trial 0 is the exact stand pose")
+    add_robot_argument(parser, "robot profile (params/robot_<name>.yaml); default talos")
     parser.add_argument("--pull-passage", choices=[p.value for p in PullPassageStudy], default="facing",
                         help="how pull doors are passed (module docstring)")
     parser.add_argument("--tuck-at", type=float, default=0.45,
@@ -262,7 +285,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error("--trials must be at least 1")
     if not 0.3 <= args.tuck_at <= 1.0:
         parser.error("--tuck-at must be within [0.3, 1.0] m (the body turned sideways is 0.4 m wide)")
-    kinematics = RobotKinematics(load_profile("talos"))
+    check_robot(parser, args.robot)
+    kinematics = RobotKinematics(load_profile(args.robot))
     runs = []
     for opening in args.openings:
         for hinge in args.hinges:

@@ -72,6 +72,7 @@ class RobotKinematics:
     def _check_profile_names(self) -> None:
         for arm in self.profile.arms.values():
             self.joint_indices(arm.joints)
+        self.configuration(self.profile.look_posture, base=self.walking_q)  # names a joint the URDF has
         for frame in (self.profile.head_camera_frame, *self.profile.feet.values()):
             self.frame_id(frame)
 

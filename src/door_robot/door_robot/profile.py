@@ -4,6 +4,18 @@ A profile names the URDF, the arm chains (torso + arm joints per side, as DESIGN
 requires: the 7-DOF arm alone could not reach most handles), the hand's tool-centre-point
 (TCP) frame with its grasp offset, the head camera, the feet, the nominal posture and the
 walking limits. Joint limits are read from the URDF itself (:mod:`door_robot.kinematics`).
+
+The head camera frame need not be an optical frame (z forward, x right, y down):
+``head_camera_axes`` says which of its signed axes the camera looks along (``forward``, the
+optical z) and which points down the image (``down``, the optical y); the optical x is
+y × z. G1's ``d435_link`` is an x-forward body frame pitched 0.83 rad down, so
+``{forward: x, down: -z}`` makes its camera look down by that pitch. A profile without it
+leaves the choice to the simulator (the frame axes closest to the base's forward and down).
+
+``look_posture`` (joint → rad over the walking posture) is how the robot stands to look for
+the door. A head camera on a neck is tilted by the neck (the simulator's ``head_pitch``); one
+fixed to the torso is not, and G1's, 48° down, sees the handle only from within ~1 m: it leans
+its torso back instead (the waist pitch).
 """
 
 from __future__ import annotations
@@ -13,21 +25,12 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import yaml
 
 from door_contract.vocabulary import Side
 from door_robot.errors import RobotModelError
 from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
-
-
-@dataclass(frozen=True)
-class ArmSpec:
-    """The joints that move one hand (torso first), its TCP parent frame and grasp offset."""
-
-    joints: tuple[str, ...]
-    tcp_parent_frame: str
-    grasp_offset: tuple[float, float, float]  # m, TCP in the parent frame
-    gripper_joint: str | None = None
 
 
 @dataclass(frozen=True)
@@ -37,6 +40,113 @@ class ExtraFrame:
 
     parent: str
     xyz: tuple[float, float, float]
+
+
+AXIS_INDEX = {"x": 0, "y": 1, "z": 2}
+"""The frame axes a ``head_camera_axes`` or ``grasp_axes`` entry may name, optionally signed (``-z``)."""
+
+Axis = tuple[float, float, float]
+
+
+def _cross(a: Axis, b: Axis) -> Axis:
+    return a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]
+
+
+def _check_axis_pair(what: str, names: tuple[str, str], axes: tuple[Axis, Axis]) -> None:
+    """Both signed unit frame axes, on different axes (so that they span a right-handed frame)."""
+    for name, axis in zip(names, axes):
+        if sorted(abs(v) for v in axis) != [0.0, 0.0, 1.0]:
+            raise RobotModelError(f"{what}.{name} must be a signed frame axis, got {axis}")
+    if any(a != 0.0 and b != 0.0 for a, b in zip(*axes)):
+        raise RobotModelError(f"{what}: {names[0]} {axes[0]} and {names[1]} {axes[1]} must be different frame axes")
+
+
+def _axis_pair(what: str, names: tuple[str, str], document: Any) -> tuple[Axis, Axis]:
+    """``{<names[0]>: x, <names[1]>: -z}`` as two signed axes (names ``x``, ``y``, ``z``)."""
+    if not isinstance(document, dict):
+        raise RobotModelError(f"{what} must be a mapping {{{names[0]}: …, {names[1]}: …}}, got {document!r}")
+    if set(document) != set(names):
+        raise RobotModelError(f"{what} needs exactly {names[0]!r} and {names[1]!r}, got {sorted(document)}")
+    first, second = (_signed_axis(what, name, document[name]) for name in names)
+    return first, second
+
+
+def _signed_axis(what: str, name: str, label: Any) -> Axis:
+    text = str(label).strip().lower()
+    sign, letter = (-1.0, text[1:]) if text.startswith("-") else (1.0, text.lstrip("+"))
+    if letter not in AXIS_INDEX:
+        raise RobotModelError(f"{what}.{name} = {label!r}: expected x, y or z, optionally signed (-z)")
+    axis = [0.0, 0.0, 0.0]
+    axis[AXIS_INDEX[letter]] = sign
+    return axis[0], axis[1], axis[2]
+
+
+@dataclass(frozen=True)
+class CameraAxes:
+    """The optical axes in the camera frame's coordinates: ``forward`` (optical z, the
+    viewing direction) and ``down`` (optical y, rows growing); both signed unit frame axes,
+    on different axes. ``right`` (optical x) = down × forward completes the right-handed frame."""
+
+    forward: Axis
+    down: Axis
+
+    def __post_init__(self) -> None:
+        _check_axis_pair("head_camera_axes", ("forward", "down"), (self.forward, self.down))
+
+    @property
+    def right(self) -> Axis:
+        """Optical x = y × z."""
+        return _cross(self.down, self.forward)
+
+    @classmethod
+    def from_document(cls, document: Any) -> CameraAxes:
+        """From ``{forward: x, down: -z}`` (axis names ``x``, ``y``, ``z``, optionally signed)."""
+        return cls(*_axis_pair("head_camera_axes", ("forward", "down"), document))
+
+
+GRASP_TARGET_AXES = np.column_stack([(-1.0, 0.0, 0.0), (0.0, 0.0, 1.0), (0.0, 1.0, 0.0)])
+"""Where a :class:`GraspAxes`' into_door, up and into_door × up go in the grasp frame."""
+
+
+@dataclass(frozen=True)
+class GraspAxes:
+    """How a hand holds a lever handle, as two signed axes of its TCP frame: ``into_door``
+    points from the palm to the fingertips (into the door while grasping), ``up`` is held
+    vertical (the hand closes along it, around the horizontal lever).
+
+    In the door's grasp frame G (x = the door normal towards the robot, z up, y = z × x) the
+    TCP's axes are then a ↦ −x_G, b ↦ z_G, a × b ↦ (−x_G) × z_G = y_G, so the TCP's
+    orientation in G is R = [−x_G z_G y_G]·[a b a×b]ᵀ (:meth:`rotation_in_grasp`). TALOS's
+    grippers (fingers along −z, closing along y): ``{into_door: -z, up: y}``, R's columns
+    x_tcp = y_G, y_tcp = z_G, z_tcp = x_G."""
+
+    into_door: Axis
+    up: Axis
+
+    def __post_init__(self) -> None:
+        _check_axis_pair("grasp_axes", ("into_door", "up"), (self.into_door, self.up))
+
+    def rotation_in_grasp(self) -> np.ndarray:
+        """R (3×3), the TCP's orientation in the grasp frame: R @ into_door = −x_G, R @ up = z_G."""
+        source = np.column_stack([self.into_door, self.up, _cross(self.into_door, self.up)])
+        return GRASP_TARGET_AXES @ source.T
+
+    @classmethod
+    def from_document(cls, document: Any) -> GraspAxes:
+        """From ``{into_door: -z, up: y}``."""
+        return cls(*_axis_pair("grasp_axes", ("into_door", "up"), document))
+
+
+@dataclass(frozen=True)
+class ArmSpec:
+    """The joints that move one hand (torso first), its TCP parent frame and grasp offset, and
+    how the hand is turned to hold a lever (:class:`GraspAxes`)."""
+
+    joints: tuple[str, ...]
+    tcp_parent_frame: str
+    grasp_offset: Axis  # m, TCP in the parent frame
+    grasp_axes: GraspAxes
+    gripper_joint: str | None = None
 
 
 @dataclass(frozen=True)
@@ -68,6 +178,8 @@ class RobotProfile:
     walking: WalkingLimits
     walking_posture: dict = field(default_factory=dict)  # joint -> rad over the nominal posture
     extra_frames: dict = field(default_factory=dict)  # frame name -> ExtraFrame (added to every model)
+    head_camera_axes: CameraAxes | None = None  # the optical axes in head_camera_frame; None: the sim's guess
+    look_posture: dict = field(default_factory=dict)  # joint -> rad over the walking posture, to see the door
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
@@ -122,7 +234,7 @@ def _xyz(values: Any) -> tuple[float, float, float]:
 
 def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
     arms = {Side(side): ArmSpec(tuple(arm["joints"]), arm["tcp_parent_frame"], _xyz(arm["grasp_offset"]),
-                                arm.get("gripper_joint"))
+                                GraspAxes.from_document(arm["grasp_axes"]), arm.get("gripper_joint"))
             for side, arm in document["arms"].items()}
     posture = {name: float(value) for name, value in document["nominal_posture"].items()}
     if not all(math.isfinite(v) for v in posture.values()):
@@ -137,7 +249,21 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         feet={Side(side): frame for side, frame in document["feet"].items()},
         nominal_posture=posture,
         walking=WalkingLimits(**{k: float(v) for k, v in document["walking"].items()}),
-        walking_posture={name: float(value) for name, value in (document.get("walking_posture") or {}).items()},
+        walking_posture=_posture(document, "walking_posture"),
         extra_frames={name: ExtraFrame(frame["parent"], _xyz(frame["xyz"]))
                       for name, frame in (document.get("extra_frames") or {}).items()},
+        head_camera_axes=_camera_axes(document.get("head_camera_axes")),
+        look_posture=_posture(document, "look_posture"),
     )
+
+
+def _posture(document: dict[str, Any], key: str) -> dict[str, float]:
+    """An optional ``joint: rad`` mapping of the profile, finite."""
+    posture = {name: float(value) for name, value in (document.get(key) or {}).items()}
+    if not all(math.isfinite(v) for v in posture.values()):
+        raise RobotModelError(f"{key} contains NaN or infinity")
+    return posture
+
+
+def _camera_axes(document: Any) -> CameraAxes | None:
+    return None if document is None else CameraAxes.from_document(document)

@@ -310,18 +310,18 @@ def _problem(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions
 
 
 def _tcp_in_grasp(setup: MotionSetup, start_chain: np.ndarray) -> np.ndarray:
-    """TCP relative to the grasp frame: fingers into the door, closing vertically.
-
-    TALOS-like grippers point their fingers along −z of the TCP and close along y: so
-    z_tcp = x_grasp (the normal), y_tcp = z_grasp (up), x_tcp = y_grasp. While the hand holds
-    the handle, the transform measured at the start (:func:`anchored_to_hand`) replaces
-    this nominal one: the grasp locked the hand wherever it closed (a few mm off, a degree
-    turned), and the closed chain must keep exactly that.
+    """TCP relative to the grasp frame: fingers into the door, closing vertically, as the
+    profile's ``grasp_axes`` of the hand say (:class:`door_robot.profile.GraspAxes`; TALOS's
+    grippers point their fingers along −z of the TCP and close along y: z_tcp = x_grasp, the
+    normal, y_tcp = z_grasp, up, x_tcp = y_grasp). While the hand holds the handle, the
+    transform measured at the start (:func:`anchored_to_hand`) replaces this nominal one: the
+    grasp locked the hand wherever it closed (a few mm off, a degree turned), and the closed
+    chain must keep exactly that.
     """
     if setup.hand_in_grasp is not None:
         return setup.hand_in_grasp
     tcp = np.eye(4)
-    tcp[:3, :3] = np.column_stack([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
+    tcp[:3, :3] = setup.chain.kinematics.profile.arm(setup.chain.side).grasp_axes.rotation_in_grasp()
     return tcp
 
 

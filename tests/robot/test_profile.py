@@ -1,0 +1,76 @@
+"""Robot profiles: the head camera's optical axes (``head_camera_axes``) are read and checked."""
+
+import numpy as np
+import pytest
+import yaml
+
+from door_robot.errors import RobotModelError
+from door_robot.locations import params_dir
+from door_robot.profile import CameraAxes, load_profile
+
+
+def _profile_with_axes(tmp_path, axes) -> str:
+    document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
+    if axes is None:
+        document.pop("head_camera_axes")
+    else:
+        document["head_camera_axes"] = axes
+    path = tmp_path / "robot_g1_variant.yaml"
+    path.write_text(yaml.safe_dump(document))
+    return str(path)
+
+
+def test_g1_camera_looks_along_its_link_x_with_z_up():
+    axes = load_profile("g1").head_camera_axes
+    assert axes == CameraAxes(forward=(1.0, 0.0, 0.0), down=(0.0, 0.0, -1.0))
+    assert axes.right == (0.0, -1.0, 0.0)  # optical x = y × z: the link's -y, to the right
+
+
+@pytest.mark.parametrize("forward, down", [("x", "-z"), ("-y", "z"), ("+z", "x"), ("-x", "-y")])
+def test_the_optical_frame_is_right_handed(forward, down):
+    axes = CameraAxes.from_document({"forward": forward, "down": down})
+    rotation = np.column_stack([axes.right, axes.down, axes.forward])
+    assert np.linalg.det(rotation) == pytest.approx(1.0)
+    np.testing.assert_allclose(rotation.T @ rotation, np.eye(3))
+
+
+def test_a_profile_without_axes_leaves_them_to_the_simulator(tmp_path):
+    assert load_profile(_profile_with_axes(tmp_path, None)).head_camera_axes is None
+
+
+@pytest.mark.parametrize("axes, message", [
+    ({"forward": "x", "down": "x"}, "different frame axes"),
+    ({"forward": "x", "down": "-x"}, "different frame axes"),
+    ({"forward": "w", "down": "z"}, "expected x, y or z"),
+    ({"forward": "x"}, "exactly 'forward' and 'down'"),
+    ({"forward": "x", "down": "-z", "up": "z"}, "exactly 'forward' and 'down'"),
+    ("x", "must be a mapping"),
+])
+def test_bad_axes_are_refused_naming_the_field(tmp_path, axes, message):
+    with pytest.raises(RobotModelError, match=message):
+        load_profile(_profile_with_axes(tmp_path, axes))
+
+
+def test_axes_that_are_not_signed_frame_axes_are_refused():
+    with pytest.raises(RobotModelError, match="signed frame axis"):
+        CameraAxes(forward=(0.6, 0.8, 0.0), down=(0.0, 0.0, -1.0))
+
+
+def test_talos_grasps_as_the_motion_library_always_did():
+    """Fingers (TCP −z) into the door, closing along y held vertical: x_tcp = y_G, y_tcp = z_G, z_tcp = x_G."""
+    for arm in load_profile("talos").arms.values():
+        np.testing.assert_array_equal(arm.grasp_axes.rotation_in_grasp(),
+                                      np.column_stack([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]))
+
+
+def test_grasp_axes_are_required_and_checked(tmp_path):
+    document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
+    document["arms"]["left"]["grasp_axes"] = {"into_door": "y", "up": "-y"}
+    path = tmp_path / "robot_bad_grasp.yaml"
+    path.write_text(yaml.safe_dump(document))
+    with pytest.raises(RobotModelError, match="grasp_axes: into_door .* different frame axes"):
+        load_profile(str(path))
+    del document["arms"]["left"]["grasp_axes"]
+    path.write_text(yaml.safe_dump(document))
+    with pytest.raises(RobotModelError, match="incomplete: 'grasp_axes'"):
+        load_profile(str(path))
