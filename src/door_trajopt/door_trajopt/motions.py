@@ -1,18 +1,18 @@
-"""The door motion library as optimisation problems (seed 001 Sec. IV, seed 000 Sec. III).
+"""The door motion library as optimisation problems ([Banerjee 2015] Sec. IV, [Zucker 2013] Sec. III).
 
 State of every problem: the arm chain's joints (torso + arm of one side) followed by the
-door's hinge angle θ and handle angle φ (seed 000's m = 9 = arm + hip yaw + hinge + handle;
+door's hinge angle θ and handle angle φ ([Zucker 2013]'s m = 9 = arm + hip yaw + hinge + handle;
 here the chain is the profile's). Constraints:
 
 * **closed chain** while grasping: TCP pose = :meth:`DoorModel.grasp_pose` (θ_t, φ_t) at every
-  waypoint, with a 6-vector mask (seed 001's diag(c1..c6));
-* **key poses**: pregrasp (the hand ``pregrasp_offset`` back along the normal, seed 001
+  waypoint, with a 6-vector mask ([Banerjee 2015]'s diag(c1..c6));
+* **key poses**: pregrasp (the hand ``pregrasp_offset`` back along the normal, [Banerjee 2015]
   Sec. II: "the hand needs to move forward around 4 cm") and grasp at the end of the approach;
 * **door path**: φ reaches the handle turn, θ the opening angle at the last waypoint;
-* **CoM inside the support polygon** (half-planes of the feet's rectangle, seed 001 Sec. IV);
+* **CoM inside the support polygon** (half-planes of the feet's rectangle, [Banerjee 2015] Sec. IV);
 * **wall clearance**: a hinge loss on the elbow's signed distance to the door plane.
 
-Costs: accelerations (seed 000's A = KᵀK; seed 001's joint displacement Q1 for velocity),
+Costs: accelerations ([Zucker 2013]'s A = KᵀK; [Banerjee 2015]'s joint displacement Q1 for velocity),
 posture deviation from the nominal posture (Q2).
 """
 
@@ -79,10 +79,10 @@ class MotionOptions:
     """Motion-library settings (SI units). Validated; errors name the field and range."""
 
     waypoints: int = 10
-    handle_turn: float = 0.8  # rad; seed 001 turned ~80°, the DRC-like sim handle stops at 1.0 rad
+    handle_turn: float = 0.8  # rad; [Banerjee 2015] turned ~80°, the DRC-like sim handle stops at 1.0 rad
     push_angle: float = 0.2  # rad the arm pushes the door open (the body pushes it further)
-    pull_angle: float = 0.35  # rad (~20°; seed 001: ~40°): the gap the other hand blocks through
-    pregrasp_offset: float = 0.04  # m, seed 001 Sec. II
+    pull_angle: float = 0.35  # rad (~20°; [Banerjee 2015]: ~40°): the gap the other hand blocks through
+    pregrasp_offset: float = 0.04  # m, [Banerjee 2015] Sec. II
     grasp_clearance: float = 0.01  # m the approach stops short of the grasp point along the normal:
     # TALOS's fingertips reach within ~1 cm of the leaf at the grasp point, and a door estimate
     # ~1 cm deep made the physical arm press 100 N into a latched door (the grasp closes within 2 cm)
@@ -383,7 +383,7 @@ def _turn(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -
 
 def _swing(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
     """Push or pull: the hinge follows a fixed schedule θ_t = θ₀ + (θ_goal − θ₀)·t/(n−1)
-    (seed 001 Sec. IV: "rotate ~40° about the door hinge") and the arm's redundancy is
+    ([Banerjee 2015] Sec. IV: "rotate ~40° about the door hinge") and the arm's redundancy is
     optimised around it. Left free, the hinge DOF let the optimum swing the door out to
     0.27–0.42 rad and pull it back; past ~0.3 rad TALOS's forearm meets the post."""
     n = options.waypoints
@@ -402,7 +402,7 @@ def _swing(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
 
 
 def _block(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
-    """The other hand goes behind the opened leaf near its free edge (seed 001 Sec. IV-4:
+    """The other hand goes behind the opened leaf near its free edge ([Banerjee 2015] Sec. IV-4:
     "a target position behind the door which can be defined according to the position of
     the door handle"; position only). It first comes to ``block_entry`` beyond the free
     edge, level with its final place, and slides in behind the leaf from there: straight
@@ -528,7 +528,7 @@ def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray 
 
 
 def _through_keys(problem: TrajectoryProblem, keys: list[tuple[int, np.ndarray]], door: tuple) -> np.ndarray:
-    """Piecewise-linear interpolation through key waypoints (seed 000 Sec. III)."""
+    """Piecewise-linear interpolation through key waypoints ([Zucker 2013] Sec. III)."""
     times = [t for t, _ in keys]
     values = np.array([np.concatenate([q, door]) for _, q in keys])
     all_t = np.arange(problem.n_waypoints)
