@@ -12,7 +12,7 @@ from door_robot.profile import load_profile
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.legs import plan_legs
-from footstep_planner.narrow import PullPassage
+from footstep_planner.narrow import PASSAGE_CLEARANCE, PullPassage
 from footstep_planner.requests import (
     PULL_LEG_NAMES,
     GoalSettings,
@@ -109,3 +109,29 @@ def test_the_task_plans_from_the_profile_even_with_a_shorter_stride_and_turn(
     assert kinematic_violations(through.plan, options) == []
     beyond = passage.door.to_door(through.plan.final_stance.body_pose.x, through.plan.final_stance.body_pose.y)[1]
     assert beyond <= -SETTINGS.beyond_door + options.goal_position_tolerance + 1e-6
+
+
+@pytest.mark.parametrize("hinge", list(HingeSide))
+@pytest.mark.parametrize("width", [0.80, 0.87, 1.00])
+@pytest.mark.parametrize("shift", [0.0, 0.14])
+def test_a_held_pull_leaf_passage_plans_clear_of_the_frame(width: float, hinge: HingeSide, shift: float) -> None:
+    """pull_passage = sideways: from the stand pose, the five legs plan within the step limits,
+    clear of wall and posts (the body box with its offset), every side-step on the line moved
+    towards the body's back by the shift (capped so the box's back clears the latch post)."""
+    options = profile_options()
+    settings = GoalSettings.from_parameters({"pull_passage": "sideways", "pull_passage_shift": shift})
+    door = door_facing_robot(DoorOpening.PULL, hinge_side=hinge, leaf_width=width, clear_opening=width,
+                             handle_offset=0.07).with_angle(0.35)
+    stand = walk_problem(WalkGoal.STAND, door, _start(options), options, settings).legs[0].goal
+    start = Stance.nominal(stand, options.nominal_foot_separation)
+    passage = walk_problem(WalkGoal.THROUGH, door, start, options, settings)
+    assert len(passage.legs) == 5
+    through = plan_legs(FootstepPlanner(passage.world, options_for_problem(passage, WalkGoal.THROUGH, options)),
+                        passage.start, passage.legs)
+    assert through.succeeded, through.reason
+    assert collisions_along(through.plan, passage.world, options) == []
+    assert kinematic_violations(through.plan, options) == []
+    line = door.to_door(passage.legs[3].goal.x, passage.legs[3].goal.y)[0]
+    back = options.body_half_depth - options.body_offset + options.body_margin
+    assert door.clear_opening / 2.0 <= line <= door.clear_opening / 2.0 + shift + 1e-9
+    assert line + back <= door.clear_opening - PASSAGE_CLEARANCE + 1e-9
