@@ -107,9 +107,10 @@ class SimBridgeNode(Node):
                 self.get_logger().info(f"supervisor /{self.loop.deadman.supervisor} is back: executions accepted")
 
     def _on_grasp(self, side: Side, request: SetBool.Request, response: SetBool.Response) -> SetBool.Response:
-        result = self.world.grasp(side, bool(request.data))
-        response.success, response.message = bool(result.success), result.message
-        self.get_logger().info(f"{side.value} hand {'close' if request.data else 'open'}: {result.message}")
+        success, message, report = self.loop.grasp(side, bool(request.data))
+        self._handle(report)
+        response.success, response.message = success, message
+        self.get_logger().info(f"{side.value} hand {'close' if request.data else 'open'}: {message}")
         return response
 
     def _handle(self, report: LoopReport) -> None:

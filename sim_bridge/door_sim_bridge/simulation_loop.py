@@ -28,6 +28,7 @@ from dataclasses import dataclass
 from enum import Enum
 
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus
+from door_contract.vocabulary import Side
 from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.execution import Execution
 from door_sim_bridge.schedule import Schedule
@@ -69,6 +70,7 @@ class TickStage(str, Enum):
     BUILD = "building the execution"
     EXECUTION = "commanding the execution"
     HOLD = "holding the robot after a fault"
+    GRASP = "operating a gripper"
     PHYSICS = "stepping the physics"
     PUBLICATION = "publishing"
 
@@ -156,6 +158,17 @@ class SimulationLoop:
             return Stop(why, None, dead_man)
         running.execution.stop(why)
         return Stop(why, running, dead_man)
+
+    def grasp(self, side: Side, close: bool) -> tuple[bool, str, LoopReport]:
+        """Close or open ``side``'s gripper: (success, message, report). A bug is contained like
+        one in a tick: the call is answered with success False and "internal error …", and
+        the fault is counted and reported (a service that raised would leave its caller waiting)."""
+        try:
+            result = self.world.grasp(side, close)
+        except Exception as error:  # a bug: a refused call, not a dead service
+            fault = self._fault(TickStage.GRASP, error)
+            return False, f"internal error: {fault}", LoopReport(faults=self._new((fault,)))
+        return bool(result.success), result.message, LoopReport()
 
     def supervisor_beat(self, wall_now: float) -> bool:
         """The supervisor's heartbeat arrived; True when it ends a tripped dead-man."""

@@ -11,6 +11,7 @@ import pytest
 from test_sim_execution import ARM, _start_over
 
 from door_contract.payloads import ExecutionKind, OutcomeStatus
+from door_contract.vocabulary import Side
 from door_sim_bridge.base_velocity import BaseVelocity
 from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.execution import TrajectoryExecution
@@ -221,3 +222,14 @@ def test_base_velocity_is_the_difference_of_positions_over_simulated_time():
     np.testing.assert_allclose(velocity.update(1.1, pose), [0.2, -0.1, 0.0])
     assert velocity.update(1.1, pose) is None  # simulated time did not advance
     np.testing.assert_allclose(velocity.update(1.2, pose), [0.0, 0.0, 0.0])
+
+
+def test_a_bug_in_a_grasp_is_a_refused_call_and_a_reported_fault():
+    world = DoorWorld(WorldConfig(robot_mode=RobotMode.KINEMATIC))
+    loop = _loop(world)
+    success, message, report = loop.grasp(Side.RIGHT, False)  # opening an open hand: fine
+    assert success and not report.faults
+    world.close()  # every call into the physics raises now
+    success, message, report = loop.grasp(Side.RIGHT, True)
+    assert not success and message.startswith("internal error: operating a gripper failed")
+    assert [f.stage for f in report.faults] == [TickStage.GRASP] and loop.fault_count == 1
