@@ -23,7 +23,7 @@ from footstep_planner.world import World
 
 OPTIONS = profile_options()
 BODY_ACROSS = 2.0 * (OPTIONS.body_half_width + OPTIONS.body_margin)  # 0.84 m for TALOS
-BODY_DEEP = 2.0 * (OPTIONS.body_half_depth + abs(OPTIONS.body_offset) + OPTIONS.body_margin)  # 0.60 m
+BODY_DEEP = 2.0 * OPTIONS.body_reach_depth  # 0.60 m
 
 
 def _door(width: float, opening: DoorOpening, hinge: HingeSide = HingeSide.LEFT):

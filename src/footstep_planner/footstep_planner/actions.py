@@ -253,7 +253,7 @@ class ActionSet:
         foot_radius = math.hypot(options.foot_length / 2.0 + options.foot_margin,
                                  options.foot_width / 2.0 + options.foot_margin)
         body_radius = math.hypot(options.body_half_width + options.body_margin,
-                                 options.body_half_depth + abs(options.body_offset) + options.body_margin)
+                                 options.body_reach_depth)
         foot_reach = np.hypot(*(table.foot[:, :2] - table.support_centre).T) + foot_radius
         centre_reach = np.hypot(*(table.centre - table.support_centre).T) + body_radius
         return cls(

@@ -109,7 +109,7 @@ def _footprint_half_extents(options: FootstepPlannerOptions) -> tuple[float, flo
     sole_half_width = (options.nominal_foot_separation + options.foot_width) / 2.0
     half_width = max(options.body_half_width + options.body_margin,
                      sole_half_width + options.foot_margin)
-    half_depth = max(options.body_half_depth + abs(options.body_offset) + options.body_margin,
+    half_depth = max(options.body_reach_depth,
                      options.foot_length / 2.0 + options.foot_margin)
     return half_width, half_depth
 

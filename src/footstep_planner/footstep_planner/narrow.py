@@ -70,7 +70,7 @@ def passage_turn(door: DoorGeometry, options: FootstepPlannerOptions, sideways: 
     pi/2 (sideways) when only that fits, None when it does not fit even sideways.
     ``sideways`` asks for pi/2 whenever the body fits so (a pull door's blocking hand)."""
     across = options.body_half_width + options.body_margin
-    deep = options.body_half_depth + abs(options.body_offset) + options.body_margin  # box ahead of the centre
+    deep = options.body_reach_depth  # the box may sit ahead of the centre
     half_gap = door.clear_opening / 2.0 - PASSAGE_CLEARANCE
     fits_sideways = deep <= half_gap + _SLACK
     if across <= half_gap + _SLACK and not (sideways and fits_sideways):
@@ -113,8 +113,7 @@ def passage_legs(door: DoorGeometry, options: FootstepPlannerOptions, distance_b
     if not turn:
         return (Leg(final, "through the doorway"),)
     yaw = _turned_yaw(door, turn, heading)
-    radius = math.hypot(options.body_half_width + options.body_margin,
-                        options.body_half_depth + abs(options.body_offset) + options.body_margin) + WALL_CLEARANCE
+    radius = math.hypot(options.body_half_width + options.body_margin, options.body_reach_depth) + WALL_CLEARANCE
     near_face, far_face = _wall_faces(door)
     beyond = far_face - radius
     if door.opening is DoorOpening.PUSH:

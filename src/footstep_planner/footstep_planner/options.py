@@ -100,6 +100,12 @@ class FootstepPlannerOptions:
                      FieldRange(self.foot_width, self.nominal_foot_separation, "m"))
 
     @property
+    def body_reach_depth(self) -> float:
+        """Half depth, margin included, of the box centred on the stance centre that holds the
+        body box wherever its offset puts it: b + |offset| + margin (m)."""
+        return self.body_half_depth + abs(self.body_offset) + self.body_margin
+
+    @property
     def max_stance_separation(self) -> float:
         """Largest lateral distance between sole centres after a side step (m)."""
         return self.nominal_foot_separation + self.max_side_step

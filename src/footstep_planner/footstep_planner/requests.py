@@ -34,7 +34,7 @@ from footstep_planner.world import World
 
 __all__ = ["GoalSettings", "Snapshot", "WalkProblem", "door_geometry_from_estimate", "options_for_problem",
            "options_for_walking", "passage_angle", "planner_options", "problem_for_request", "stand_pose",
-           "start_stance", "walk_problem", "WalkPlanners"]
+           "snapshot_stance", "start_stance", "walk_problem", "WalkPlanners"]
 
 PLANNED_STANCE_TOLERANCE = (0.03, 0.05)
 """The base within (m, rad) of where the last plan left it: that plan was walked."""
@@ -111,12 +111,9 @@ class GoalSettings:
     @classmethod
     def from_parameters(cls, parameters: Mapping[str, Any]) -> GoalSettings:
         """The settings among a node's parameters (others are ignored)."""
-        names = {field for field in cls.__dataclass_fields__}
-        values: dict[str, Any] = {name: float(value) for name, value in parameters.items()
-                                  if name in names and name != "pull_passage"}
-        if "pull_passage" in parameters:
-            values["pull_passage"] = PullPassage(parameters["pull_passage"])
-        return cls(**values)
+        defaults = cls()  # each value converted to its default's type (float, PullPassage)
+        return cls(**{name: type(getattr(defaults, name))(value) for name, value in parameters.items()
+                      if name in cls.__dataclass_fields__})
 
 
 @dataclass(frozen=True)
@@ -204,18 +201,24 @@ def problem_for_request(request: FootstepRequest, snapshot: Snapshot, options: F
     """Start stance, the legs to walk in order, and the obstacles of ``request``, from the
     snapshot. Raises :class:`~footstep_planner.errors.RequestRefused` without odometry or
     without a usable door estimate (its reason names what is missing)."""
-    if snapshot.base_pose is None:
-        raise RequestRefused("no valid odometry yet")
+    start = snapshot_stance(snapshot, options)
     estimate = snapshot.estimate
     problem = requested_estimate_problem(estimate, request.door_stamp)
     if problem or estimate is None:
         raise RequestRefused(problem or "no door estimate")
+    door = door_geometry_from_estimate(estimate, request.opening, request.door_angle, settings.handle_standoff)
+    return walk_problem(request.goal, door, start, options, settings)
+
+
+def snapshot_stance(snapshot: Snapshot, options: FootstepPlannerOptions) -> Stance:
+    """The stance a plan starts from, from the snapshot (:func:`start_stance`). Raises
+    :class:`~footstep_planner.errors.RequestRefused` without odometry."""
+    if snapshot.base_pose is None:
+        raise RequestRefused("no valid odometry yet")
     pose = snapshot.base_pose
     body = Pose2D(float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
     feet = None if snapshot.feet is None else _sole_poses(snapshot.feet)
-    start = start_stance(body, options.nominal_foot_separation, feet, snapshot.planned_stance)
-    door = door_geometry_from_estimate(estimate, request.opening, request.door_angle, settings.handle_standoff)
-    return walk_problem(request.goal, door, start, options, settings)
+    return start_stance(body, options.nominal_foot_separation, feet, snapshot.planned_stance)
 
 
 def _sole_poses(feet: list[FootPlacement]) -> tuple[Pose2D, Pose2D]:

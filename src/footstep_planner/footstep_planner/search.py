@@ -22,7 +22,7 @@ import numpy as np
 from door_contract.vocabulary import Foot
 from footstep_planner.actions import ActionTable
 from footstep_planner.closed_set import ClosedSetGrid
-from footstep_planner.footprint import FootprintChecker
+from footstep_planner.footprint import FootprintChecker, body_box_centre
 from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.geometry import Bounds, wrap_angle, wrap_angles
 from footstep_planner.heuristic import FootstepHeuristic, is_goal_centre
@@ -242,10 +242,10 @@ class Search:
         rows = np.concatenate((chosen, chosen + count, chosen + 2 * count))
         half_length, half_width = self._half_extents
         yaw = np.concatenate((foot_yaw, foot_yaw, midpoint_yaw))
-        x, y = points[rows, 0], points[rows, 1]
-        if self._options.body_offset:  # the bodies' boxes sit ahead of their centres; soles do not
-            ahead = np.repeat([0.0, self._options.body_offset, self._options.body_offset], len(chosen))
-            x, y = x + ahead * np.cos(yaw), y + ahead * np.sin(yaw)
+        x, y = points[rows, 0], points[rows, 1]  # copies (fancy indexing)
+        if self._options.body_offset:  # the bodies' boxes sit ahead of their centres; the soles' do not
+            soles = len(chosen)
+            x[soles:], y[soles:] = body_box_centre(x[soles:], y[soles:], yaw[soles:], self._options.body_offset)
         hits = self._world.rectangles_touch(x, y, yaw, half_length[rows], half_width[rows])
         return np.asarray(~hits.reshape(3, -1).any(axis=0))
 
