@@ -43,7 +43,7 @@ from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import Backend, MotionLibrary
 from door_trajopt.motions import Motion, MotionSetup, start_door_for, support_polygon
-from footstep_planner.footstep import Pose2D, Stance
+from footstep_planner.footstep import Pose2D
 from footstep_planner.legs import Leg
 from footstep_planner.narrow import SIDEWAYS
 from footstep_planner.options import FootstepPlannerOptions
@@ -59,8 +59,8 @@ from footstep_planner.requests import (
     options_for_problem,
     planner_options,
     problem_for_request,
+    snapshot_stance,
     stand_pose,
-    start_stance,
 )
 
 NODE_DEFAULTS = {spec.name: spec.default for spec in PLANNER_PARAMETERS}
@@ -191,25 +191,41 @@ def walk_through(world: DoorWorld, estimate: DoorEstimate, passage: PullPassageS
     settings = GoalSettings.from_parameters(parameters)
     options = planner_options(world.config.robot_profile, parameters)
     request = FootstepRequest(0, WalkGoal.THROUGH, world.config.door.opening, world.door_state().hinge_angle)
-    feet = world.foot_placements()
-    snapshot = Snapshot(world.base_pose(), [feet[Side.LEFT], feet[Side.RIGHT]], estimate, None)
-    problem = problem_for_request(request, snapshot, options, settings)
+    problem = problem_for_request(request, measured_snapshot(world, estimate), options, settings)
     options = options_for_problem(problem, WalkGoal.THROUGH, options)
     planners, peaks = WalkPlanners(), dict[str, float]()
-    tucked = passage is PullPassageStudy.TUCK and len(problem.legs) == 5 and kinematics is not None
-    rest = problem.legs[3:]  # after the tuck: the side-step through and the turn to face away
-    if tucked:
-        problem = replace(problem, legs=(*problem.legs[:3], _tuck_stop(problem, tuck_at)))
-    status, reason = _walk(world, planners, problem, options, peaks)
-    if tucked and status == OutcomeStatus.SUCCESS.value and kinematics is not None:
-        blocking = grasp_hand(estimate.hinge_side, DoorOpening.PULL).other
-        tuck = run_recording(world, TrajectoryExecution.from_joint_path(world, tuck_path(world, kinematics, blocking)),
-                             peaks)
-        if tuck is None or tuck.status is not OutcomeStatus.SUCCESS:
-            return "tuck: " + (tuck.status.value if tuck else "failure"), tuck.reason if tuck else "", peaks
-        status, reason = _walk(world, planners, replace(problem, start=_measured_stance(world, options), legs=rest),
-                               options, peaks)
+    if passage is PullPassageStudy.TUCK and kinematics is not None and len(problem.legs) == 5:  # the sideways legs
+        status, reason = _walk_tucked(world, estimate, kinematics, planners, problem, options, tuck_at, peaks)
+    else:
+        status, reason = _walk(world, planners, problem, options, peaks)
     return status, reason, peaks
+
+
+def measured_snapshot(world: DoorWorld, estimate: DoorEstimate) -> Snapshot:
+    """What the footstep planner node would hold now: the base pose, the measured soles, the estimate."""
+    feet = world.foot_placements()
+    return Snapshot(world.base_pose(), [feet[Side.LEFT], feet[Side.RIGHT]], estimate, None)
+
+
+def _walk_tucked(world: DoorWorld, estimate: DoorEstimate, kinematics: RobotKinematics, planners: WalkPlanners,
+                 problem: WalkProblem, options: FootstepPlannerOptions, tuck_at: float,
+                 peaks: dict[str, float]) -> tuple[str, str]:
+    """The sideways pull legs to ``tuck_at`` before the wall, the tuck, then the rest (the
+    side-step through and the turn to face away) from the measured feet: (status, reason)."""
+    rest = problem.legs[3:]
+    status, reason = _walk(world, planners, replace(problem, legs=(*problem.legs[:3], _tuck_stop(problem, tuck_at))),
+                           options, peaks)
+    if status != OutcomeStatus.SUCCESS.value:
+        return status, reason
+    blocking = grasp_hand(estimate.hinge_side, DoorOpening.PULL).other
+    tuck = run_recording(world, TrajectoryExecution.from_joint_path(world, tuck_path(world, kinematics, blocking)),
+                         peaks)
+    if tuck is None:
+        return "tuck: failure", "the tuck ended without an outcome"
+    if tuck.status is not OutcomeStatus.SUCCESS:
+        return f"tuck: {tuck.status.value}", tuck.reason
+    start = snapshot_stance(measured_snapshot(world, estimate), options)
+    return _walk(world, planners, replace(problem, start=start, legs=rest), options, peaks)
 
 
 def _tuck_stop(problem: WalkProblem, tuck_at: float) -> Leg:
@@ -231,12 +247,6 @@ def tuck_path(world: DoorWorld, kinematics: RobotKinematics, side: Side) -> Join
     start, goal = np.array([now[name] for name in names]), np.array([walking[name] for name in names])
     times = np.linspace(0.0, TUCK_DURATION, 21)[1:]
     return JointPath(times, names, np.array([start + (goal - start) * t / TUCK_DURATION for t in times]))
-
-
-def _measured_stance(world: DoorWorld, options: FootstepPlannerOptions) -> Stance:
-    feet = world.foot_placements()
-    left, right = (Pose2D(p.x, p.y, p.yaw) for p in (feet[Side.LEFT], feet[Side.RIGHT]))
-    return start_stance(Pose2D(0.0, 0.0, 0.0), options.nominal_foot_separation, (left, right))
 
 
 def _walk(world: DoorWorld, planners: WalkPlanners, problem: WalkProblem, options: FootstepPlannerOptions,
