@@ -26,7 +26,8 @@ def test_defaults_describe_talos() -> None:
     ("step_cost", 0.0), ("distance_weight", -1.0), ("heuristic_weight", 0.5),
     ("max_expansions", 0), ("max_planning_time", 0.0), ("goal_position_tolerance", 0.0),
     ("goal_yaw_tolerance", 4.0), ("grid_resolution", 0.0), ("yaw_resolution", 1.0),
-    ("search_margin", 0.0), ("max_stride", math.nan), ("max_turn", math.inf),
+    ("search_margin", 0.0), ("max_stride", math.nan), ("max_turn", math.inf), ("body_offset", 0.6),
+    ("body_offset", math.nan),
 ])
 def test_out_of_range_value_names_the_field_and_range(field: str, value: float) -> None:
     with pytest.raises(FootstepPlannerError) as caught:
