@@ -66,5 +66,8 @@ class WalkGoal(StrEnum):
 
     STAND = "stand"
     """The stand pose in front of the door, from which the arm opens it."""
+    DOORWAY = "doorway"
+    """A pull door: along the wall and sideways into the doorway, the blocking hand on the
+    leaf, to where that arm tucks before the door plane."""
     THROUGH = "through"
-    """Through the open doorway, past the door plane."""
+    """Through the open doorway, past the door plane (a pull door: on from the doorway)."""

@@ -2,7 +2,7 @@
 
 import pytest
 
-from door_contract.vocabulary import DoorOpening
+from door_contract.vocabulary import DoorOpening, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.machine import DoorTaskMachine, MachineOptions
@@ -72,6 +72,24 @@ def test_success_path_visits_fig3_states_in_order(opening):
     report = machine.report()
     assert [a["state"] for a in report][:3] == ["DETECT_DOOR", "WALK_TO_DOOR", "OPEN_DOOR/MOVE_TO_HANDLE"]
     assert all(a["planning_s"] > 0 for a in report)
+
+
+def test_a_pull_door_walks_to_the_doorway_tucks_the_arm_and_walks_on():
+    """footstep_planner.pull_passage: the walk through in two walks around the blocking arm's
+    tuck, each its own request; their labels name the WALK_THROUGH phase (Table I)."""
+    machine = DoorTaskMachine(MachineOptions(opening=DoorOpening.PULL))
+    robot = Robot(machine)
+    assert robot.run(machine.start(t(0.0))) is TaskState.DONE
+    assert robot.visited[-4:] == [TaskState.TO_DOORWAY, TaskState.TUCK, TaskState.WALK_THROUGH, TaskState.DONE]
+    walks = [r.goal for r in robot.requests if isinstance(r, act.RequestFootsteps)]
+    assert walks == [WalkGoal.STAND, WalkGoal.DOORWAY, WalkGoal.THROUGH]
+    motions = [r.motion for r in robot.requests if isinstance(r, act.RequestMotion)]
+    assert motions[-2:] == ["ready_to_walk", "tuck_arm"]
+    labels = [a["state"] for a in machine.report()][-3:]
+    assert labels == ["WALK_THROUGH/TO_DOORWAY", "WALK_THROUGH/TUCK", "WALK_THROUGH"]
+    from door_bringup.table_one import phase_rows  # the bringup's table, as in test_table_one_rows_from_reports
+    rows = {row.phase: row for row in phase_rows([{"attempts": machine.report()}])}
+    assert rows["WALK_THROUGH"].runs == 1 and rows["WALK_THROUGH"].successes == 1
 
 
 @pytest.mark.parametrize("autonomy, expected", [

@@ -234,3 +234,29 @@ def test_a_repeat_skips_the_cache_and_tries_more_guesses_with_more_iterations(sc
     assert tries[1].result.iterations > tries[0].result.iterations
     with pytest.raises(TrajoptError, match="attempt"):
         library.plan(Motion.APPROACH_HANDLE, setup, start, attempt=-1)
+
+
+@pytest.mark.parametrize("backend", list(Backend))
+def test_the_tuck_takes_the_blocking_arm_to_the_walking_posture_with_the_torso_held(scene, backend):
+    """A pull passage's tuck (footstep_planner.pull_passage): the blocking arm's own joints end
+    in the profile's walking posture, the torso (shared with the other arm) never moves, the
+    CoM stays over the feet, and it takes at least ``tuck_duration`` (the leaf follows the hand)."""
+    world, kinematics, estimate = scene
+    library = MotionLibrary()
+    side = grasp_hand(estimate.hinge_side, DoorOpening.PULL).other
+    assert Motion.TUCK_ARM.uses_other_arm
+    setup = motion_setup(world, kinematics, estimate, side=side,
+                         door_angles=start_door_for(Motion.TUCK_ARM, 1.7500004, library.options))
+    assert setup.start_door == (1.75, 0.0)  # a leaf on its stop reads a hair beyond it
+    start = setup.chain.chain_of(setup.chain.body_q)
+    plan = library.plan(Motion.TUCK_ARM, setup, start, backend)
+    assert plan.succeeded, plan.result.message
+    names = setup.chain.joint_names
+    walking = setup.chain.chain_of(kinematics.walking_q)
+    shared = [i for i, name in enumerate(names) if name in kinematics.profile.arm(side.other).joints]
+    own = [i for i in range(len(names)) if i not in shared]
+    assert shared and own
+    assert np.allclose(plan.path.positions[:, shared], start[shared], atol=1e-6)
+    assert np.allclose(plan.path.positions[-1, own], walking[own], atol=1e-4)
+    assert plan.path.times[-1] >= library.options.tuck_duration - 1e-9
+    assert plan.result.max_violation <= library.constraint_tolerance

@@ -13,8 +13,8 @@ from footstep_planner.astar import FootstepPlanner
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.legs import plan_legs
 from footstep_planner.narrow import PASSAGE_CLEARANCE, PullPassage
+from footstep_planner.pull_passage import PULL_LEG_NAMES
 from footstep_planner.requests import (
-    PULL_LEG_NAMES,
     GoalSettings,
     options_for_problem,
     passage_angle,
@@ -64,16 +64,16 @@ def _start(options, distance: float = 2.5, lateral: float = 0.3, yaw: float = 0.
 
 def test_each_goal_has_its_legs_and_snapping() -> None:
     options = profile_options()
-    wide_pull = walk_problem(WalkGoal.THROUGH, door_facing_robot(DoorOpening.PULL), _start(options), options, SETTINGS)
+    facing = GoalSettings.from_parameters({"pull_passage": "facing"})
+    wide_pull = walk_problem(WalkGoal.THROUGH, door_facing_robot(DoorOpening.PULL), _start(options), options, facing)
     assert [leg.name for leg in wide_pull.legs] == list(PULL_LEG_NAMES)
-    sideways = GoalSettings.from_parameters({"pull_passage": "sideways"})
-    assert sideways.pull_passage is PullPassage.SIDEWAYS and SETTINGS.pull_passage is PullPassage.FACING
-    held = walk_problem(WalkGoal.THROUGH, door_facing_robot(DoorOpening.PULL), _start(options), options, sideways)
+    assert facing.pull_passage is PullPassage.FACING and SETTINGS.pull_passage is PullPassage.SIDEWAYS
+    held = walk_problem(WalkGoal.THROUGH, door_facing_robot(DoorOpening.PULL), _start(options), options, SETTINGS)
     assert [leg.name for leg in held.legs] == [*PULL_LEG_NAMES[:2], "turn sideways before the doorway",
                                                 "side-step through the doorway", "turn to face away"]
     assert all(o.name.startswith(("wall", "post")) for o in wide_pull.world.obstacles)  # the leaf is pushed
     narrow = door_facing_robot(DoorOpening.PULL, leaf_width=0.8, clear_opening=0.8, handle_offset=0.07)
-    narrow_pull = walk_problem(WalkGoal.THROUGH, narrow, _start(options), options, SETTINGS)
+    narrow_pull = walk_problem(WalkGoal.THROUGH, narrow, _start(options), options, facing)
     assert [leg.name for leg in narrow_pull.legs][:2] == list(PULL_LEG_NAMES[:2]) and len(narrow_pull.legs) == 5
     push = walk_problem(WalkGoal.THROUGH, door_facing_robot(DoorOpening.PUSH), _start(options), options, SETTINGS)
     assert len(push.legs) == 1 and push.door.angle == SETTINGS.passage_door_angle

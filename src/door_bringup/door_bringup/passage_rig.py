@@ -10,31 +10,28 @@ jitters the stand pose by up to ±2 cm and ±1° per trial: a single run of a ba
 proves little. ``--robot`` is the main job's robot option: the
 sim's robot, the kinematics the motions are planned with, and the footstep planner's limits.
 
-``--pull-passage`` chooses how a pull door is passed: ``facing`` and ``sideways`` are the
-footstep planner's ``pull_passage`` values; ``tuck`` side-steps facing the hinge with the
-blocking hand on the leaf to ``--tuck-at`` m before the door plane, brings that arm to the
-walking posture (the leaf follows it and comes to rest on the front of the body, far from
-its axis, instead of on the hand near it), and side-steps the rest: a study of a passage
-the FSM does not run yet (issue #11).
+The walk through is the FSM's: a push door in one walk; a pull door to the doorway, the
+blocking arm's tuck, and on through (:mod:`footstep_planner.pull_passage`). ``--pull-passage``
+and ``--tuck-at`` are the footstep planner's ``pull_passage`` and ``tuck_at``, for studies.
 
     python -m door_bringup.passage_rig --robot g1 --openings push pull --hinges left right --trials 3
-    python -m door_bringup.passage_rig --openings pull --pull-passage tuck --trials 5
+    python -m door_bringup.passage_rig --openings pull --trials 5 --tuck-at 0.5
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
-from collections.abc import Sequence
-from dataclasses import dataclass, replace
-from enum import Enum
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
 from door_bringup.robot_option import add_robot_argument, check_robot
-from door_contract.converters.trajectory import JointPath
+from door_contract.errors import ParameterRangeError
+from door_contract.parameters import validate_all
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
-from door_contract.vocabulary import DoorOpening, HingeSide, Side, grasp_hand
+from door_contract.vocabulary import DoorOpening, HingeSide, Side, WalkGoal, grasp_hand
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_sim_bridge.execution import ExecutionResult, FootstepExecution, TrajectoryExecution
@@ -43,23 +40,18 @@ from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import Backend, MotionLibrary
 from door_trajopt.motions import Motion, MotionSetup, start_door_for, support_polygon
-from footstep_planner.footstep import Pose2D
-from footstep_planner.legs import Leg
-from footstep_planner.narrow import SIDEWAYS
+from footstep_planner.narrow import PullPassage
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import PLANNER_PARAMETERS
 from footstep_planner.proposal import contract_footsteps
 from footstep_planner.requests import (
     GoalSettings,
     Snapshot,
-    WalkGoal,
     WalkPlanners,
-    WalkProblem,
     door_geometry_from_estimate,
     options_for_problem,
     planner_options,
     problem_for_request,
-    snapshot_stance,
     stand_pose,
 )
 
@@ -68,16 +60,8 @@ NODE_DEFAULTS = {spec.name: spec.default for spec in PLANNER_PARAMETERS}
 JITTER = np.array([0.02, 0.02, np.radians(1.0)])
 """Largest stand-pose error a trial adds: along the normal, along the wall (m), yaw (rad)."""
 GRASP, RELEASE = "grasp", "release"
-TUCK_DURATION = 2.0
-"""Seconds the blocking arm takes to the walking posture in a tucked passage."""
-
-
-class PullPassageStudy(Enum):
-    """How the rig passes a pull door (see the module docstring)."""
-
-    FACING = "facing"
-    SIDEWAYS = "sideways"
-    TUCK = "tuck"
+WALKED_THROUGH = "walk through"
+"""The stage of a door whose last walk ran (to its end, or to a fall)."""
 
 
 @dataclass(frozen=True)
@@ -164,41 +148,54 @@ def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstim
                 return str(step), "failure", answer.message
             continue
         assert isinstance(step, Motion)
-        side = hand.other if step is Motion.BLOCK_DOOR else hand
-        setup = motion_setup(world, kinematics, estimate, side, start_door_for(step, door_angle, library.options))
-        plan = library.plan(step, setup, setup.chain.chain_of(setup.chain.body_q), Backend.SQP)
-        if not plan.succeeded or plan.path is None:
-            return step.value, "planning failed", plan.result.message
-        result = run_recording(world, TrajectoryExecution.from_joint_path(world, plan.path), peaks)
-        if result is None:
-            return step.value, "failure", "the motion ended without an outcome"
-        if result.status is not OutcomeStatus.SUCCESS:
-            return step.value, result.status.value, result.reason
-        door_angle = float(plan.final_door[0])
+        status, reason, door_angle = run_motion(world, kinematics, estimate, step, library, door_angle, peaks)
+        if status != OutcomeStatus.SUCCESS.value:
+            return step.value, status, reason
     return Motion.READY_TO_WALK.value, "success", ""
 
 
-def walk_through(world: DoorWorld, estimate: DoorEstimate, passage: PullPassageStudy = PullPassageStudy.FACING,
-                 tuck_at: float = 0.45, kinematics: RobotKinematics | None = None) -> tuple[str, str, dict[str, float]]:
-    """Plan the passage from the measured feet as the footstep planner node does (the same
-    request, snapshot and planners) and walk it: (status, reason, peak contact forces).
-    A tucked pull passage (:class:`PullPassageStudy`) walks it in two parts around the tuck."""
-    parameters = dict(NODE_DEFAULTS)
-    if passage is not PullPassageStudy.FACING:
-        parameters["pull_passage"] = PullPassageStudy.SIDEWAYS.value
-    if passage is PullPassageStudy.TUCK:
-        parameters["pull_passage_shift"] = 0.0  # the hand leaves the leaf before the wall: no pinch to avoid
+def run_motion(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate, motion: Motion,
+               library: MotionLibrary, door_angle: float, peaks: dict[str, float]) -> tuple[str, str, float]:
+    """Plan ``motion`` from the measured posture, as the trajectory optimiser node does, and
+    execute it: (status, reason, the door angle the plan ends at)."""
+    hand = grasp_hand(estimate.hinge_side, world.config.door.opening)
+    side = hand.other if motion.uses_other_arm else hand
+    setup = motion_setup(world, kinematics, estimate, side, start_door_for(motion, door_angle, library.options))
+    plan = library.plan(motion, setup, setup.chain.chain_of(setup.chain.body_q), Backend.SQP)
+    if not plan.succeeded or plan.path is None:
+        return "planning failed", plan.result.message, door_angle
+    result = run_recording(world, TrajectoryExecution.from_joint_path(world, plan.path), peaks)
+    if result is None:
+        return "failure", "the motion ended without an outcome", door_angle
+    return result.status.value, result.reason, float(plan.final_door[0])
+
+
+def passage_steps(opening: DoorOpening) -> tuple[WalkGoal | Motion, ...]:
+    """The FSM's WALK_THROUGH as walks and motions: a pull door's walk to the doorway, the
+    tuck, the walk on (:mod:`footstep_planner.pull_passage`); a push door's one walk."""
+    if opening is DoorOpening.PULL:
+        return WalkGoal.DOORWAY, Motion.TUCK_ARM, WalkGoal.THROUGH
+    return (WalkGoal.THROUGH,)
+
+
+def walk_through(world: DoorWorld, estimate: DoorEstimate, kinematics: RobotKinematics,
+                 parameters: Mapping[str, object]) -> tuple[str, str, str, dict[str, float]]:
+    """The passage as the FSM runs it (:func:`passage_steps`), each walk planned from the
+    measured feet with the footstep planner node's calls and ``parameters``, each motion with
+    the motion library: (stage, status, reason, peak contact forces), the stage
+    :data:`WALKED_THROUGH` or the step that did not succeed."""
     settings = GoalSettings.from_parameters(parameters)
     options = planner_options(world.config.robot_profile, parameters)
-    request = FootstepRequest(0, WalkGoal.THROUGH, world.config.door.opening, world.door_state().hinge_angle)
-    problem = problem_for_request(request, measured_snapshot(world, estimate), options, settings)
-    options = options_for_problem(problem, WalkGoal.THROUGH, options)
-    planners, peaks = WalkPlanners(), dict[str, float]()
-    if passage is PullPassageStudy.TUCK and kinematics is not None and len(problem.legs) == 5:  # the sideways legs
-        status, reason = _walk_tucked(world, estimate, kinematics, planners, problem, options, tuck_at, peaks)
-    else:
-        status, reason = _walk(world, planners, problem, options, peaks)
-    return status, reason, peaks
+    planners, library, peaks = WalkPlanners(), MotionLibrary(), dict[str, float]()
+    for step in passage_steps(world.config.door.opening):
+        if isinstance(step, Motion):
+            status, reason, _ = run_motion(world, kinematics, estimate, step, library,
+                                           world.door_state().hinge_angle, peaks)
+        else:
+            status, reason = _walk(world, estimate, step, planners, options, settings, peaks)
+        if status != OutcomeStatus.SUCCESS.value:
+            return (WALKED_THROUGH if step is WalkGoal.THROUGH else f"walk through: {step.value}"), status, reason, peaks
+    return WALKED_THROUGH, OutcomeStatus.SUCCESS.value, "", peaks
 
 
 def measured_snapshot(world: DoorWorld, estimate: DoorEstimate) -> Snapshot:
@@ -207,52 +204,13 @@ def measured_snapshot(world: DoorWorld, estimate: DoorEstimate) -> Snapshot:
     return Snapshot(world.base_pose(), [feet[Side.LEFT], feet[Side.RIGHT]], estimate, None)
 
 
-def _walk_tucked(world: DoorWorld, estimate: DoorEstimate, kinematics: RobotKinematics, planners: WalkPlanners,
-                 problem: WalkProblem, options: FootstepPlannerOptions, tuck_at: float,
-                 peaks: dict[str, float]) -> tuple[str, str]:
-    """The sideways pull legs to ``tuck_at`` before the wall, the tuck, then the rest (the
-    side-step through and the turn to face away) from the measured feet: (status, reason)."""
-    rest = problem.legs[3:]
-    status, reason = _walk(world, planners, replace(problem, legs=(*problem.legs[:3], _tuck_stop(problem, tuck_at))),
-                           options, peaks)
-    if status != OutcomeStatus.SUCCESS.value:
-        return status, reason
-    blocking = grasp_hand(estimate.hinge_side, DoorOpening.PULL).other
-    tuck = run_recording(world, TrajectoryExecution.from_joint_path(world, tuck_path(world, kinematics, blocking)),
-                         peaks)
-    if tuck is None:
-        return "tuck: failure", "the tuck ended without an outcome"
-    if tuck.status is not OutcomeStatus.SUCCESS:
-        return f"tuck: {tuck.status.value}", tuck.reason
-    start = snapshot_stance(measured_snapshot(world, estimate), options)
-    return _walk(world, planners, replace(problem, start=start, legs=rest), options, peaks)
-
-
-def _tuck_stop(problem: WalkProblem, tuck_at: float) -> Leg:
-    """The side-step leg cut short ``tuck_at`` m before the door plane, on the same line."""
-    through = problem.legs[3].goal
-    along, _ = problem.door.to_door(through.x, through.y)
-    x, y = problem.door.to_world(along, tuck_at)
-    return Leg(Pose2D(x, y, through.yaw), "side-step to the wall (tuck there)", SIDEWAYS)
-
-
-def tuck_path(world: DoorWorld, kinematics: RobotKinematics, side: Side) -> JointPath:
-    """The ``side`` arm's joints (not the torso, which the other arm shares) from where they are
-    to the walking posture, linearly over :data:`TUCK_DURATION`."""
-    chain = ArmChain(kinematics, side, kinematics.nominal_q)
-    walking = dict(zip(chain.joint_names, chain.chain_of(kinematics.walking_q)))
-    names = tuple(name for name in kinematics.profile.arm(side).joints
-                  if name not in kinematics.profile.arm(side.other).joints)
-    now = world.joint_positions()
-    start, goal = np.array([now[name] for name in names]), np.array([walking[name] for name in names])
-    times = np.linspace(0.0, TUCK_DURATION, 21)[1:]
-    return JointPath(times, names, np.array([start + (goal - start) * t / TUCK_DURATION for t in times]))
-
-
-def _walk(world: DoorWorld, planners: WalkPlanners, problem: WalkProblem, options: FootstepPlannerOptions,
-          peaks: dict[str, float]) -> tuple[str, str]:
-    """Plan ``problem`` and walk it, recording peak contact forces: (status, reason)."""
-    result, _ = planners.plan(problem, options)
+def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: WalkPlanners,
+          options: FootstepPlannerOptions, settings: GoalSettings, peaks: dict[str, float]) -> tuple[str, str]:
+    """Plan the walk to ``goal`` from the measured state and walk it, recording peak contact
+    forces: (status, reason)."""
+    request = FootstepRequest(0, goal, world.config.door.opening, world.door_state().hinge_angle)
+    problem = problem_for_request(request, measured_snapshot(world, estimate), options, settings)
+    result, _ = planners.plan(problem, options_for_problem(problem, goal, options))
     if not result.succeeded or result.plan is None:
         return "planning failed", f"{result.outcome.value}: {result.reason}"
     walked = run_recording(world, FootstepExecution(world, contract_footsteps(problem.start, result.plan)), peaks)
@@ -262,8 +220,9 @@ def _walk(world: DoorWorld, planners: WalkPlanners, problem: WalkProblem, option
 
 
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
-             passage: PullPassageStudy = PullPassageStudy.FACING, tuck_at: float = 0.45) -> PassageRun:
-    """One door, its stand pose jittered by ``trial`` (0: none), for the robot of ``kinematics``."""
+             planner_parameters: Mapping[str, object] | None = None) -> PassageRun:
+    """One door, its stand pose jittered by ``trial`` (0: none), for the robot of ``kinematics``;
+    the passage planned with the footstep planner node's defaults updated by ``planner_parameters``."""
     rng = np.random.default_rng(trial)
     jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
     robot = kinematics.profile.name
@@ -273,8 +232,8 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
         peaks: dict[str, float] = {}
         stage, status, reason = open_door(world, kinematics, estimate, peaks)
         if status == "success":  # the walk's contacts are the ones that matter then
-            stage = "walk through"
-            status, reason, peaks = walk_through(world, estimate, passage, tuck_at, kinematics)
+            stage, status, reason, peaks = walk_through(world, estimate, kinematics,
+                                                        {**NODE_DEFAULTS, **(planner_parameters or {})})
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
         return PassageRun(robot, opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle,
                           strikes)
@@ -286,25 +245,27 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--hinges", nargs="+", choices=[h.value for h in HingeSide], default=["left", "right"])
     parser.add_argument("--trials", type=int, default=1, help="per door; trial 0 is the exact stand pose")
     add_robot_argument(parser, "robot profile (params/robot_<name>.yaml); default talos")
-    parser.add_argument("--pull-passage", choices=[p.value for p in PullPassageStudy], default="facing",
-                        help="how pull doors are passed (module docstring)")
-    parser.add_argument("--tuck-at", type=float, default=0.45,
-                        help="tuck: how far before the door plane the blocking arm is tucked (m)")
+    parser.add_argument("--pull-passage", choices=[p.value for p in PullPassage],
+                        default=NODE_DEFAULTS["pull_passage"], help="the footstep planner's pull_passage")
+    parser.add_argument("--tuck-at", type=float, default=NODE_DEFAULTS["tuck_at"],
+                        help="the footstep planner's tuck_at: the doorway walk ends this far before the door plane (m)")
     args = parser.parse_args(argv)
     if args.trials < 1:
         parser.error("--trials must be at least 1")
-    if not 0.3 <= args.tuck_at <= 1.0:
-        parser.error("--tuck-at must be within [0.3, 1.0] m (the body turned sideways is 0.4 m wide)")
+    overrides = {"pull_passage": args.pull_passage, "tuck_at": args.tuck_at}
+    try:
+        validate_all(PLANNER_PARAMETERS, overrides)
+    except ParameterRangeError as error:
+        parser.error(str(error))
     check_robot(parser, args.robot)
     kinematics = RobotKinematics(load_profile(args.robot))
     runs = []
     for opening in args.openings:
         for hinge in args.hinges:
             for trial in range(args.trials):
-                runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics,
-                                     PullPassageStudy(args.pull_passage), args.tuck_at))
+                runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics, overrides))
                 print(runs[-1].line(), flush=True)
-    through = sum(run.stage == "walk through" and run.status == "success" for run in runs)
+    through = sum(run.stage == WALKED_THROUGH and run.status == "success" for run in runs)
     fell = sum(run.status == OutcomeStatus.FELL.value for run in runs)
     print(f"through the doorway: {through}/{len(runs)}; fell: {fell}/{len(runs)}")
     return 0

@@ -13,7 +13,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 from typing import Any
 
-PHASES = ("DETECT_DOOR", "WALK_TO_DOOR", "OPEN_DOOR", "WALK_THROUGH")
+from door_bringup.table_one import PHASES, phase_of
 
 
 @dataclass(frozen=True)
@@ -30,9 +30,9 @@ class TaskProgress:
         return replace(self, **changes)
 
 
-def phase_of(state: str) -> str:
+def numbered_state(state: str) -> str:
     """``n/4 STATE`` for the four phases (``OPEN_DOOR/TURN_HANDLE`` is phase 3), else the state."""
-    top = state.split("/", 1)[0]
+    top = phase_of(state)
     return f"{PHASES.index(top) + 1}/{len(PHASES)} {state}" if top in PHASES else state
 
 
@@ -45,7 +45,7 @@ def progress_line(progress: TaskProgress) -> str:
     parts = [f"[progress] {progress.wall_s:4.0f} s"]
     if progress.sim_s is not None:
         parts.append(f"sim {progress.sim_s:.1f} s")
-    parts.append(phase_of(progress.state) if progress.state else "waiting for the FSM")
+    parts.append(numbered_state(progress.state) if progress.state else "waiting for the FSM")
     if progress.base_xy is not None:
         parts.append(f"base ({_rounded(progress.base_xy[0]):.2f}, {_rounded(progress.base_xy[1]):.2f}) m")
     if progress.door_angle is not None:

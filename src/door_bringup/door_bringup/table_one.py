@@ -24,7 +24,9 @@ class PhaseRow:
 
 
 def phase_of(state_label: str) -> str:
-    return "OPEN_DOOR" if state_label.startswith("OPEN_DOOR/") else state_label
+    """The phase of a state's label: ``OPEN_DOOR/TURN_HANDLE`` is OPEN_DOOR, ``WALK_THROUGH/TUCK``
+    WALK_THROUGH (a sub-state's label names its phase first)."""
+    return state_label.split("/", 1)[0]
 
 
 def phase_rows(reports: Iterable[dict]) -> list[PhaseRow]:

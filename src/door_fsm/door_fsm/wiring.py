@@ -22,10 +22,14 @@ class WiringError(DoorFsmError):
 
 
 def success_sequence(opening: DoorOpening) -> tuple[TaskState, ...]:
-    """The states a successful run visits, in order (Fig. 3)."""
-    middle = (TaskState.PUSH,) if opening is DoorOpening.PUSH else (TaskState.PULL, TaskState.BLOCK)
+    """The states a successful run visits, in order (Fig. 3; a pull door walks to the doorway
+    and tucks the blocking arm before it walks through)."""
+    push = opening is DoorOpening.PUSH
+    middle = (TaskState.PUSH,) if push else (TaskState.PULL, TaskState.BLOCK)
+    doorway = () if push else (TaskState.TO_DOORWAY, TaskState.TUCK)
     return (TaskState.DETECT_DOOR, TaskState.WALK_TO_DOOR, TaskState.MOVE_TO_HANDLE, TaskState.GRASP,
-            TaskState.TURN_HANDLE, *middle, TaskState.READY_TO_WALK, TaskState.WALK_THROUGH, TaskState.DONE)
+            TaskState.TURN_HANDLE, *middle, TaskState.READY_TO_WALK, *doorway, TaskState.WALK_THROUGH,
+            TaskState.DONE)
 
 
 def build_wiring(opening: DoorOpening) -> Wiring:

@@ -47,5 +47,7 @@ STATE_WORK: dict[TaskState, StateWork] = {
     TaskState.PULL: StateWork(WorkKind.MOTION, "pull_door", critical=False, holds_handle=True),
     TaskState.BLOCK: StateWork(WorkKind.MOTION, "block_door", critical=False, holds_handle=True),
     TaskState.READY_TO_WALK: StateWork(WorkKind.MOTION, "ready_to_walk", critical=False, release_first=True),
+    TaskState.TO_DOORWAY: StateWork(WorkKind.FOOTSTEPS, WalkGoal.DOORWAY, critical=True),
+    TaskState.TUCK: StateWork(WorkKind.MOTION, "tuck_arm", critical=False),
     TaskState.WALK_THROUGH: StateWork(WorkKind.FOOTSTEPS, WalkGoal.THROUGH, critical=True),
 }

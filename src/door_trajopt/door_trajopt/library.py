@@ -30,6 +30,7 @@ from door_trajopt.motions import (
     anchored_to_hand,
     build_motion,
     check_start_door,
+    minimum_duration,
 )
 from door_trajopt.problem import TrajoptError
 from door_trajopt.result import OptimizationResult, Outcome
@@ -116,7 +117,8 @@ class MotionLibrary:
         if result.outcome is Outcome.SUCCESS:
             # timed over robot and door DOFs, so the door is never swung faster than it can follow
             limits = np.concatenate([built.chain.velocity_limits * self.velocity_scale, self.door_velocity_limits])
-            timed = time_parameterise(result.trajectory, built.problem.dof_names, limits)
+            timed = time_parameterise(result.trajectory, built.problem.dof_names, limits,
+                                      minimum_duration=minimum_duration(motion, self.options))
             velocities = None if timed.velocities is None else timed.velocities[:, :k]
             path = JointPath(timed.times, built.chain.joint_names, timed.positions[:, :k], velocities)
         final = (float(result.trajectory[-1, k]), float(result.trajectory[-1, k + 1]))  # (θ, φ)

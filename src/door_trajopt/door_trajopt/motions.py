@@ -63,10 +63,12 @@ class Motion(str, Enum):
     PULL_DOOR = "pull_door"
     BLOCK_DOOR = "block_door"
     READY_TO_WALK = "ready_to_walk"
+    TUCK_ARM = "tuck_arm"
 
     @property
     def uses_other_arm(self) -> bool:
-        return self is Motion.BLOCK_DOOR
+        """The blocking arm moves (the other one opened the door)."""
+        return self in (Motion.BLOCK_DOOR, Motion.TUCK_ARM)
 
     @property
     def holds_handle(self) -> bool:
@@ -99,6 +101,7 @@ class MotionOptions:
     posture_weight: float = 0.05
     door_stop_lateral: float = 0.10  # m from the base's centreline (hand's side) of the hand stopping a pushed door
     release_retreat: float = 0.08  # m the hand backs off a pulled door's lever before it swings to walking posture
+    tuck_duration: float = 2.0  # s, at least, for the blocking arm's tuck: the leaf follows the hand
 
     def __post_init__(self) -> None:
         checks = {"waypoints": (4, 200), "handle_turn": (0.1, HANDLE_LIMITS[1]),
@@ -107,7 +110,8 @@ class MotionOptions:
                   "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "block_entry": (0.0, 0.5),
                   "block_standoff": (0.0, 0.5), "posture_weight": (0.0, 100.0),
                   "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3), "head_clearance": (0.0, 0.5),
-                  "door_stop_lateral": (0.0, 0.3), "release_retreat": (0.0, 0.3)}
+                  "door_stop_lateral": (0.0, 0.3), "release_retreat": (0.0, 0.3),
+                  "tuck_duration": (0.0, 10.0)}
         for name, (low, high) in checks.items():
             value = getattr(self, name)
             if not (np.isfinite(value) and low <= value <= high):
@@ -331,7 +335,8 @@ def build_motion(motion: Motion, setup: MotionSetup, start_chain: np.ndarray,
     # measured joints can sit a hair outside their limits (position control overshoot)
     start_chain = np.clip(start_chain, setup.chain.lower, setup.chain.upper)
     builder = {Motion.APPROACH_HANDLE: _approach, Motion.TURN_HANDLE: _turn, Motion.PUSH_DOOR: _swing,
-               Motion.PULL_DOOR: _swing, Motion.BLOCK_DOOR: _block, Motion.READY_TO_WALK: _ready}[motion]
+               Motion.PULL_DOOR: _swing, Motion.BLOCK_DOOR: _block, Motion.READY_TO_WALK: _ready,
+               Motion.TUCK_ARM: _tuck}[motion]
     return builder(setup, start_chain, options)
 
 
@@ -459,6 +464,28 @@ def _ready(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
     return MotionProblem(problem, guess, setup.chain)
 
 
+def _tuck(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
+    """A pull door's blocking arm, the robot in the doorway sideways, from the leaf to the
+    walking posture (:mod:`footstep_planner.pull_passage`): the leaf follows the hand and comes
+    to rest on the front of the body, far from its axis. The joints both arms share (the
+    torso) stay where they are; the CoM stays over the feet. No door constraint: the leaf is
+    not held (its push on the hand is what the stabiliser feeds forward)."""
+    pinned = _shared_with_other_arm(setup.chain)
+    walking = setup.chain.chain_of(setup.chain.kinematics.walking_q)
+    end_chain = np.array([start_chain[i] if name in pinned else walking[i]
+                          for i, name in enumerate(setup.chain.joint_names)])
+    end = np.concatenate([end_chain, setup.start_door])
+    problem = _problem(setup, start_chain, options, (False, False), [], end=end, pinned=pinned)
+    guess = _through_keys(problem, [(0, start_chain), (options.waypoints - 1, end_chain)], setup.start_door)
+    return MotionProblem(problem, guess, setup.chain)
+
+
+def minimum_duration(motion: Motion, options: MotionOptions) -> float:
+    """The shortest a ``motion`` may take (s): the tuck's ``tuck_duration``, else 0 (the
+    joints' velocity and acceleration limits alone time it)."""
+    return options.tuck_duration if motion is Motion.TUCK_ARM else 0.0
+
+
 def _shared_with_other_arm(chain: ArmChain) -> tuple[str, ...]:
     """Joints of this chain that the other arm's chain also has (the torso)."""
     other = chain.kinematics.profile.arm(chain.side.other).joints
@@ -547,9 +574,19 @@ def anchored_to_hand(setup: MotionSetup, start_chain: np.ndarray) -> MotionSetup
     return replace(setup, hand_in_grasp=np.linalg.inv(grasp) @ tcp)
 
 
+STOP_TOLERANCE = 0.01
+"""rad a measured hinge angle may lie beyond a door stop and be taken as on it (a leaf resting
+on its stop reads 1.7500005 rad)."""
+
+
 def start_door_for(motion: Motion, door_angle: float, options: MotionOptions) -> tuple[float, float]:
-    """(θ, φ) at the start of ``motion``: the handle stays turned while the door swings."""
+    """(θ, φ) at the start of ``motion``: the handle stays turned while the door swings. A
+    measured θ within :data:`STOP_TOLERANCE` beyond a stop is on the stop; one farther out is
+    kept (and refused by :func:`check_start_door`)."""
     turned = motion in (Motion.PUSH_DOOR, Motion.PULL_DOOR)
+    low, high = HINGE_LIMITS
+    if low - STOP_TOLERANCE <= door_angle <= high + STOP_TOLERANCE:
+        door_angle = min(max(door_angle, low), high)
     return (door_angle, options.handle_turn if turned else 0.0)
 
 

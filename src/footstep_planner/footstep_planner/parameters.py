@@ -32,10 +32,13 @@ PLANNER_PARAMETERS = (
     ParameterSpec("passage_door_angle", 1.57, "door angle assumed while passing: the body pushes the "
                   "leaf open ([Banerjee 2015] used a potential field for the swinging door)", unit="rad",
                   minimum=0.0, maximum=2.0),
-    ParameterSpec("pull_passage", "facing", "how a blocked pull door is passed: 'sideways' side-steps "
-                  "through facing the hinge with the blocking hand on the leaf; 'facing' turns to face the "
-                  "doorway (the hand leaves the leaf, which swings into the body)", choices=("sideways", "facing")),
-    ParameterSpec("pull_passage_shift", 0.14, "sideways pull passage: the side-step line from the opening's "
-                  "centre towards the body's back, so the blocking hand holds the leaf farther from the hinge "
-                  "(a study option: see footstep_planner.narrow.hold_leaf_line)", unit="m", minimum=0.0, maximum=0.3),
+    ParameterSpec("pull_passage", "sideways", "how a blocked pull door is passed: 'sideways' side-steps "
+                  "through facing the hinge, the blocking hand on the leaf until the arm tucks; 'facing' turns to "
+                  "face the doorway (the hand leaves the leaf, which swings into the body: a study option)",
+                  choices=("sideways", "facing")),
+    ParameterSpec("pull_passage_shift", 0.0, "sideways pull passage: the side-step line from the opening's "
+                  "centre towards the body's back (a study option: see footstep_planner.narrow.hold_leaf_line)",
+                  unit="m", minimum=0.0, maximum=0.3),
+    ParameterSpec("tuck_at", 0.45, "a pull door's doorway walk ends this far before the door plane, where the "
+                  "blocking arm tucks (footstep_planner.pull_passage)", unit="m", minimum=0.3, maximum=1.0),
 )

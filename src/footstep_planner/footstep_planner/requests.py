@@ -24,11 +24,12 @@ from footstep_planner.astar import FootstepPlanner
 from footstep_planner.door import DoorGeometry, wall_obstacles
 from footstep_planner.errors import RequestRefused
 from footstep_planner.footstep import Footstep, Pose2D, Stance
-from footstep_planner.goals import pull_passage_waypoints, stand_pose_for_opening
+from footstep_planner.goals import stand_pose_for_opening
 from footstep_planner.legs import Leg, plan_legs
 from footstep_planner.narrow import PullPassage, passage_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import PlanResult
+from footstep_planner.pull_passage import doorway_legs, in_doorway, onward_legs, pull_passage_legs
 from footstep_planner.robot_limits import options_for_walking, planner_options
 from footstep_planner.world import World
 
@@ -38,8 +39,6 @@ __all__ = ["GoalSettings", "Snapshot", "WalkProblem", "door_geometry_from_estima
 
 PLANNED_STANCE_TOLERANCE = (0.03, 0.05)
 """The base within (m, rad) of where the last plan left it: that plan was walked."""
-PULL_LEG_NAMES = ("turn towards the hinge", "along the wall", "face the doorway", "through the doorway")
-"""The legs of :func:`~footstep_planner.goals.pull_passage_waypoints`, in order."""
 
 
 def door_geometry_from_estimate(estimate: DoorEstimate, opening: DoorOpening, angle: float,
@@ -102,11 +101,15 @@ class GoalSettings:
     """Goal distance past the door plane (m)."""
     passage_door_angle: float = 1.57
     """Push-door angle assumed while passing: the body pushes the leaf open (rad)."""
-    pull_passage: PullPassage = PullPassage.FACING
+    pull_passage: PullPassage = PullPassage.SIDEWAYS
     """How a blocked pull door is passed (:class:`~footstep_planner.narrow.PullPassage`)."""
-    pull_passage_shift: float = 0.14
+    pull_passage_shift: float = 0.0
     """Sideways: the side-step line from the opening's centre towards the body's back (m)
-    (:func:`~footstep_planner.narrow.hold_leaf_line`)."""
+    (:func:`~footstep_planner.narrow.hold_leaf_line`; the tuck takes the hand off the leaf
+    before the wall plane, so there is no pinch to shift away from)."""
+    tuck_at: float = 0.45
+    """A pull door's doorway walk ends this far before the door plane, where the blocking arm
+    tucks (m; :mod:`~footstep_planner.pull_passage`)."""
 
     @classmethod
     def from_parameters(cls, parameters: Mapping[str, Any]) -> GoalSettings:
@@ -149,26 +152,31 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
 
     * stand: the door is shut while the robot walks there, so its leaf is an obstacle;
       the stand pose itself keeps the torso out of a pulled leaf's swing;
-    * through a PULL door: the other hand blocks the leaf and the walk sweeps it open
-      (:func:`~footstep_planner.goals.pull_passage_waypoints`): only wall and posts count;
-      with ``pull_passage`` = sideways the robot then side-steps through still facing the
-      hinge, the hand on the leaf (:func:`~footstep_planner.narrow.hold_leaf_line`);
+    * a PULL door: the other hand blocks the leaf and the walk sweeps it open
+      (:mod:`~footstep_planner.pull_passage`): only wall and posts count. ``doorway`` walks to
+      where the blocking arm tucks; ``through`` walks on from there, or, from anywhere else,
+      the whole passage;
     * through a PUSH door: the leaf at :func:`passage_angle` is an obstacle.
 
     A doorway narrower than the body is passed sideways
-    (:func:`~footstep_planner.narrow.passage_legs`).
+    (:func:`~footstep_planner.narrow.passage_legs`). Raises
+    :class:`~footstep_planner.errors.RequestRefused` for a doorway walk at a push door.
     """
     if goal is WalkGoal.STAND:
         legs: tuple[Leg, ...] = (Leg(stand_pose(door, options, settings), "to the stand pose"),)
         return WalkProblem(start, legs, World.from_door(door), door)
     if door.opening is DoorOpening.PULL:
-        poses = pull_passage_waypoints(door, stand_pose(door, options, settings), settings.beyond_door)
-        legs = tuple(Leg(pose, name) for pose, name in zip(poses, PULL_LEG_NAMES))
         held = settings.pull_passage_shift if settings.pull_passage is PullPassage.SIDEWAYS else None
-        sideways = passage_legs(door, options, settings.beyond_door, heading=poses[1].yaw, hold_leaf=held)
-        if len(sideways) > 1:  # sideways (holding the leaf, or narrower than the body), not facing the doorway
-            legs = (*legs[:2], *sideways)
+        legs = pull_passage_legs(door, stand_pose(door, options, settings), options, settings.beyond_door, held)
+        doorway = doorway_legs(door, legs, settings.tuck_at)
+        if goal is WalkGoal.DOORWAY:
+            legs = doorway
+        elif in_doorway(start, doorway):
+            legs = onward_legs(legs)
         return WalkProblem(start, legs, World(wall_obstacles(door)), door)
+    if goal is WalkGoal.DOORWAY:
+        raise RequestRefused("a doorway walk is a pull door's (the blocking arm tucks there); "
+                             "a push door is walked through in one go")
     door = door.with_angle(passage_angle(door.angle, settings))
     return WalkProblem(start, passage_legs(door, options, settings.beyond_door), World.from_door(door), door)
 
