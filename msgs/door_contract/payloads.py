@@ -10,12 +10,14 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import types
+import typing
 from enum import Enum
 from typing import Any, TypeVar, get_type_hints
 
 from door_contract.errors import ContractError, NonFiniteError
 from door_contract.json_text import parse_bounded
-from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
+from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeSide, Motion, WalkGoal
 
 Payload = TypeVar("Payload")
 
@@ -78,7 +80,7 @@ class DoorEstimate:
     corners: tuple[tuple[float, float, float], ...]
     confidence: float  # 0..1, fraction of voting frames that agreed
     frames_voted: int
-    mode: str  # "automatic" | "operator"
+    mode: DetectionMode
 
 
 @dataclasses.dataclass(frozen=True)
@@ -103,9 +105,9 @@ class MotionRequest:
     """``/trajectory_optimizer/request``: one motion of the door motion library."""
 
     request_id: int
-    motion: str  # approach_handle, turn_handle, push_door, pull_door, block_door, ready_to_walk
+    motion: Motion
     opening: DoorOpening
-    backend: str = ""  # "sqp" | "chomp"; empty = the node's parameter
+    backend: Backend | None = None  # None: the node's parameter
     door_angle: float = 0.0
     door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
     door: str = ""  # the approved DoorEstimate itself (JSON), so a late-joining planner has it
@@ -178,6 +180,14 @@ def decode(payload_type: type[Payload], text: str) -> Payload:
         raise ContractError(f"{payload_type.__name__}: {error}") from None
 
 
+def _optional_type(hint: Any) -> Any:
+    """``X`` of a hint ``X | None``, else None."""
+    arguments = typing.get_args(hint)
+    if typing.get_origin(hint) in (typing.Union, types.UnionType) and len(arguments) == 2 and type(None) in arguments:
+        return next(argument for argument in arguments if argument is not type(None))
+    return None
+
+
 def _finite_tuple(owner: str, name: str, values: list[Any]) -> tuple[Any, ...]:
     items: list[Any] = []
     for value in values:
@@ -195,6 +205,9 @@ def _finite_tuple(owner: str, name: str, values: list[Any]) -> tuple[Any, ...]:
 
 
 def _field_value(owner: str, name: str, hint: Any, value: Any) -> Any:
+    optional = _optional_type(hint)
+    if optional is not None:
+        return None if value is None else _field_value(owner, name, optional, value)
     if isinstance(hint, type) and issubclass(hint, Enum):
         if issubclass(hint, str) and not isinstance(value, str):
             raise ContractError(f"{owner}.{name}: expected a string, got {value!r}")

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from enum import StrEnum
 
-__all__ = ["DoorOpening", "Foot", "HingeSide", "Side", "WalkGoal", "grasp_hand"]
+__all__ = ["Backend", "DetectionMode", "DoorOpening", "Foot", "HingeSide", "Motion", "Side", "WalkGoal", "grasp_hand"]
 
 
 class DoorOpening(StrEnum):
@@ -71,3 +71,43 @@ class WalkGoal(StrEnum):
     leaf, to where that arm tucks before the door plane."""
     THROUGH = "through"
     """Through the open doorway, past the door plane (a pull door: on from the doorway)."""
+
+
+class Motion(StrEnum):
+    """A motion of the door motion library (``MotionRequest.motion``; [Banerjee 2015] Sec. IV)."""
+
+    APPROACH_HANDLE = "approach_handle"
+    TURN_HANDLE = "turn_handle"
+    PUSH_DOOR = "push_door"
+    PULL_DOOR = "pull_door"
+    BLOCK_DOOR = "block_door"
+    READY_TO_WALK = "ready_to_walk"
+    TUCK_ARM = "tuck_arm"
+    """A pull door's blocking arm to the walking posture, in the doorway."""
+
+    @property
+    def uses_other_arm(self) -> bool:
+        """The blocking arm moves (the other one opened the door)."""
+        return self in (Motion.BLOCK_DOOR, Motion.TUCK_ARM)
+
+    @property
+    def holds_handle(self) -> bool:
+        """The hand is locked on the handle throughout (closed kinematic chain)."""
+        return self in (Motion.TURN_HANDLE, Motion.PUSH_DOOR, Motion.PULL_DOOR)
+
+
+class Backend(StrEnum):
+    """The trajectory optimiser that plans a motion (``MotionRequest.backend``)."""
+
+    SQP = "sqp"
+    """TrajOpt-style sequential quadratic programming ([Banerjee 2015])."""
+    CHOMP = "chomp"
+    """Constrained CHOMP ([Zucker 2013] Sec. III)."""
+
+
+class DetectionMode(StrEnum):
+    """Which pipeline produced a door estimate (``DoorEstimate.mode``; [Banerjee 2015] Sec. III-A vs III-B)."""
+
+    AUTOMATIC = "automatic"
+    OPERATOR = "operator"
+    """Operator-aided: from the operator's scribble on the handle."""

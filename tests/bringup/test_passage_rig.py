@@ -3,8 +3,7 @@
 import pytest
 
 from door_bringup.passage_rig import GRASP, RELEASE, PassageRun, main, opening_sequence, passage_steps
-from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
-from door_trajopt.motions import Motion
+from door_contract.vocabulary import DoorOpening, HingeSide, Motion, WalkGoal
 
 
 def test_the_doors_are_opened_in_the_fsms_order():

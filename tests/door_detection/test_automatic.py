@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 from helpers_detection import angle_deg, handle_error
 
-from door_contract.vocabulary import DoorOpening, HingeSide, Side
+from door_contract.vocabulary import DetectionMode, DoorOpening, HingeSide, Side
 from door_detection.automatic import detect_automatic
-from door_detection.estimate import DetectionMode, DetectionOutcome
+from door_detection.estimate import DetectionOutcome
 from door_detection.options import DetectionOptions
 
 

@@ -7,9 +7,9 @@ import numpy as np
 import pytest
 
 from door_contract.converters.camera_info import CameraIntrinsics
-from door_contract.vocabulary import Side
+from door_contract.vocabulary import DetectionMode, Side
 from door_detection.errors import DetectionError
-from door_detection.estimate import DetectedDoor, DetectionMode
+from door_detection.estimate import DetectedDoor
 from door_detection.frame_sync import STREAMS, FrameSync
 from door_detection.overlay import HANDLE_COLOUR, LEAF_COLOUR, draw_estimate
 

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 from helpers_detection import angle_deg, handle_error
 
-from door_contract.vocabulary import DoorOpening, HingeSide, Side
-from door_detection.estimate import DetectionMode, DetectionOutcome
+from door_contract.vocabulary import DetectionMode, DoorOpening, HingeSide, Side
+from door_detection.estimate import DetectionOutcome
 from door_detection.operator_aided import detect_from_scribble
 
 

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 from helpers_detection import angle_deg, handle_error
 
+from door_contract.vocabulary import DetectionMode
 from door_detection.errors import DetectionError
-from door_detection.estimate import DetectionMode
 from door_detection.view_search import (
     Neck,
     NeckAxis,

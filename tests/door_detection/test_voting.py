@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from door_contract.vocabulary import Side
-from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
+from door_contract.vocabulary import DetectionMode, Side
+from door_detection.estimate import DetectedDoor, DetectionOutcome, DetectionResult
 from door_detection.options import DetectionOptions
 from door_detection.voting import Voter, precision
 

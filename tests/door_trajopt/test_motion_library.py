@@ -7,15 +7,14 @@ import numpy as np
 import pytest
 from door_scenes import estimate_from_world, motion_setup, stand_world, talos_kinematics
 
-from door_contract.vocabulary import DoorOpening, HingeSide, grasp_hand
+from door_contract.vocabulary import Backend, DoorOpening, HingeSide, Motion, grasp_hand
 from door_sim_bridge.execution import TrajectoryExecution
 from door_trajopt.chomp import ChompSolver
 from door_trajopt.door_model import rotation_vector
 from door_trajopt.evaluation import ProblemEvaluator
-from door_trajopt.library import Backend, MotionLibrary
+from door_trajopt.library import MotionLibrary
 from door_trajopt.motions import (
     DoorStateOutOfRange,
-    Motion,
     _tcp_in_grasp,
     anchored_to_hand,
     build_motion,

@@ -113,7 +113,7 @@ def test_approach_is_planned_within_limits(robot):
 def test_unknown_motion_and_unknown_door_are_rejected(robot):
     unknown = robot.request(MotionRequest(2, "moonwalk", "push"))
     assert unknown.status is OutcomeStatus.REJECTED and "unknown motion" in unknown.reason
-    missing = robot.request(MotionRequest(3, "approach_handle", "push", "", 0.0, 123.0), retry_not_ready=False)
+    missing = robot.request(MotionRequest(3, "approach_handle", "push", None, 0.0, 123.0), retry_not_ready=False)
     assert missing.status is OutcomeStatus.REJECTED and "123.000" in missing.reason
 
 
@@ -121,19 +121,19 @@ def test_nan_joint_states_are_rejected(robot):
     robot.state["positions"] = {**robot.state["positions"], "arm_right_4_joint": math.nan}
     outcome = None
     for attempt in range(20):  # until the NaN state has replaced the good one in the node
-        outcome = robot.request(MotionRequest(4 + attempt, "approach_handle", "push", "", 0.0, ESTIMATE.stamp),
+        outcome = robot.request(MotionRequest(4 + attempt, "approach_handle", "push", None, 0.0, ESTIMATE.stamp),
                                 retry_not_ready=False)
         if outcome.status is not OutcomeStatus.SUCCESS:
             break
     assert outcome.status is OutcomeStatus.REJECTED and "joint states" in outcome.reason
     robot.state["positions"] = {**robot.state["positions"], "arm_right_4_joint": -0.5}
-    again = robot.request(MotionRequest(40, "approach_handle", "push", "", 0.0, ESTIMATE.stamp))
+    again = robot.request(MotionRequest(40, "approach_handle", "push", None, 0.0, ESTIMATE.stamp))
     assert again.status is OutcomeStatus.SUCCESS, again.reason  # the node kept running
 
 
 def test_a_door_angle_outside_the_stops_is_rejected_at_once(robot):
     """turn_handle at 1e6 rad once blocked the optimiser for 80 s; the library refuses it."""
-    outcome = robot.request(MotionRequest(50, "turn_handle", "push", "", 1e6, ESTIMATE.stamp))
+    outcome = robot.request(MotionRequest(50, "turn_handle", "push", None, 1e6, ESTIMATE.stamp))
     assert outcome.status is OutcomeStatus.REJECTED and "door_angle 1e+06 rad is outside" in outcome.reason
-    again = robot.request(MotionRequest(51, "approach_handle", "push", "", 0.0, ESTIMATE.stamp))
+    again = robot.request(MotionRequest(51, "approach_handle", "push", None, 0.0, ESTIMATE.stamp))
     assert again.status is OutcomeStatus.SUCCESS, again.reason  # the node kept running

@@ -31,15 +31,15 @@ from door_bringup.robot_option import add_robot_argument, check_robot
 from door_contract.errors import ParameterRangeError
 from door_contract.parameters import validate_all
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
-from door_contract.vocabulary import DoorOpening, HingeSide, Side, WalkGoal, grasp_hand
+from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeSide, Motion, Side, WalkGoal, grasp_hand
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_sim_bridge.execution import ExecutionResult, FootstepExecution, TrajectoryExecution
 from door_sim_bridge.world import DoorConfig, DoorWorld, StanceConfig, WorldConfig
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
-from door_trajopt.library import Backend, MotionLibrary
-from door_trajopt.motions import Motion, MotionSetup, start_door_for, support_polygon
+from door_trajopt.library import MotionLibrary
+from door_trajopt.motions import MotionSetup, start_door_for, support_polygon
 from footstep_planner.narrow import PullPassage
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import PLANNER_PARAMETERS
@@ -90,7 +90,7 @@ def perfect_estimate(world: DoorWorld) -> DoorEstimate:
     truth = world.door_ground_truth()
     return DoorEstimate(world.time, "odom", tuple(truth.handle_grasp_pose[:3, 3]), tuple(truth.normal),
                         world.config.door.hinge_side, truth.width, tuple(tuple(c) for c in truth.corners),
-                        1.0, 10, "automatic")
+                        1.0, 10, DetectionMode.AUTOMATIC)
 
 
 def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0, 0.0),

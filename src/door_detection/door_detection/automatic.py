@@ -33,11 +33,11 @@ import cv2
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
-from door_contract.vocabulary import Side
+from door_contract.vocabulary import DetectionMode, Side
 from door_detection.door_pairs import DoorCandidate, corners_3d, door_surface_points, find_doors
 from door_detection.edges import edge_width, refine_door_edges
 from door_detection.errors import DetectionError, InputError
-from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
+from door_detection.estimate import DetectedDoor, DetectionOutcome, DetectionResult
 from door_detection.grasp import locate_grasp
 from door_detection.handle import HandleBlob, find_handle, touches_border
 from door_detection.jambs import trim_jambs

@@ -12,18 +12,11 @@ from enum import Enum
 
 import numpy as np
 
-from door_contract.vocabulary import Side
+from door_contract.vocabulary import DetectionMode, Side
 from door_detection.errors import DetectionError
 
 FloatArray = np.ndarray
 """A float64 numpy array (shape given in each docstring)."""
-
-
-class DetectionMode(Enum):
-    """Which pipeline produced an estimate ([Banerjee 2015] Sec. III-A vs III-B)."""
-
-    AUTOMATIC = "automatic"
-    OPERATOR = "operator"
 
 
 class DetectionOutcome(Enum):

@@ -34,10 +34,10 @@ import numpy as np
 import open3d
 
 from door_contract.converters.camera_info import CameraIntrinsics
-from door_contract.vocabulary import Side
+from door_contract.vocabulary import DetectionMode, Side
 from door_detection.automatic import UNEXPECTED_ERRORS
 from door_detection.errors import InputError
-from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
+from door_detection.estimate import DetectedDoor, DetectionOutcome, DetectionResult
 from door_detection.grasp import locate_grasp
 from door_detection.handle import ColourStats, HandleBlob, colour_stats, grow_blob
 from door_detection.options import DetectionOptions

@@ -66,4 +66,4 @@ def contract_estimate(estimate: DetectedDoor, stamp: float, nominal: NominalDoor
         normal=_point(estimate.normal), hinge_side=estimate.hinge_side,
         width=float(width), corners=tuple(_point(c) for c in corners),
         confidence=float(estimate.confidence), frames_voted=int(estimate.frames_voted),
-        mode=estimate.mode.value)
+        mode=estimate.mode)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from door_contract.vocabulary import WalkGoal
+from door_contract.vocabulary import Motion, WalkGoal
 
 
 @dataclass(frozen=True)
@@ -22,7 +22,7 @@ class RequestFootsteps:
 @dataclass(frozen=True)
 class RequestMotion:
     request_id: int
-    motion: str
+    motion: Motion
     attempt: int = 0
 
 

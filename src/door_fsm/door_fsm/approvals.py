@@ -11,7 +11,7 @@ from door_fsm.work import StateWork
 def approval_text(state_label: str, request_id: int, work: StateWork, summary: dict) -> str:
     """``WALK_TO_DOOR #7: approve footsteps 'stand'? steps=14 | reply 'approve 7', …``."""
     details = ", ".join(f"{k}={v}" for k, v in summary.items())
-    return (f"{state_label} #{request_id}: approve {work.kind.value} '{work.target}'? {details} "
+    return (f"{state_label} #{request_id}: approve {work.kind.value} '{work.subject}'? {details} "
             f"| reply 'approve {request_id}', 'reject {request_id}' or 'repeat {request_id}'; "
             f"pause, stop, abort, manual")
 

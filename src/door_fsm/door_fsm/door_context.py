@@ -10,14 +10,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from door_contract.payloads import DoorEstimate, FootstepRequest, MotionRequest, PlanningOutcome, encode
-from door_contract.vocabulary import DoorOpening, Side, grasp_hand
+from door_contract.vocabulary import Backend, DoorOpening, Side, grasp_hand
 from door_fsm import actions as act
 
 
 @dataclass
 class DoorContext:
     opening: DoorOpening
-    backend: str  # "sqp" | "chomp"
+    backend: Backend
     latest: DoorEstimate | None = None
     approved: DoorEstimate | None = None
     angle: float = 0.0          # rad, as left by the last executed door motion

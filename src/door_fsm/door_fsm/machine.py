@@ -20,7 +20,7 @@ from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from door_contract.vocabulary import DoorOpening, WalkGoal
+from door_contract.vocabulary import DoorOpening, Motion, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.approvals import approval_text, refusal
@@ -160,8 +160,8 @@ class DoorTaskMachine:
         rid = self._request_id
         makers: dict[WorkKind, Callable[[], act.Action]] = {
                 WorkKind.DETECTION: lambda: act.RequestDetection(rid),
-                WorkKind.FOOTSTEPS: lambda: act.RequestFootsteps(rid, WalkGoal(work.target), attempt),
-                WorkKind.MOTION: lambda: act.RequestMotion(rid, work.target, attempt),
+                WorkKind.FOOTSTEPS: lambda: act.RequestFootsteps(rid, WalkGoal(str(work.target)), attempt),
+                WorkKind.MOTION: lambda: act.RequestMotion(rid, Motion(str(work.target)), attempt),
                 WorkKind.GRASP: lambda: act.CallGrasp(rid, close=True)}
         return makers[work.kind]()
 

@@ -32,7 +32,7 @@ from door_contract.payloads import (
 )
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Services, ServiceSpec
-from door_contract.vocabulary import DoorOpening, Side
+from door_contract.vocabulary import Backend, DoorOpening, Side
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.answers import execution_event, planning_event, usable_door_estimate
@@ -70,7 +70,7 @@ class SupervisedRobot:
 
 
 class Supervisor:
-    def __init__(self, options: MachineOptions, backend: str, robot: SupervisedRobot, graph: GraphWatch) -> None:
+    def __init__(self, options: MachineOptions, backend: Backend, robot: SupervisedRobot, graph: GraphWatch) -> None:
         self.machine = DoorTaskMachine(options)
         self.door = DoorContext(options.opening, backend)
         self.robot, self.graph = robot, graph
@@ -87,7 +87,7 @@ class Supervisor:
             execution_factor=p["execution_timeout_factor"], execution_margin_s=p["execution_timeout_margin"],
             max_repeats=p["max_repeats"])
         graph = GraphWatch(set(p["required_nodes"]), wall_now + p["start_delay"], p["graph_timeout"])
-        return cls(options, p["backend"], robot, graph)
+        return cls(options, Backend(p["backend"]), robot, graph)
 
     # ------------------------------------------------------------------ inputs → actions
     def door_estimate(self, text: str, now: Instant) -> list[act.Action]:

@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 
-from door_contract.vocabulary import WalkGoal
+from door_contract.vocabulary import Motion, WalkGoal
 from door_fsm.states import StateOutcome, TaskState
 
 
@@ -23,10 +23,17 @@ class WorkKind(str, Enum):
 @dataclass(frozen=True)
 class StateWork:
     kind: WorkKind
-    target: str                # footstep goal (a WalkGoal) or motion name
+    target: WalkGoal | Motion | None  # what a footstep or motion request asks for (None: detection, grasp)
     critical: bool             # waits for approval under SUPERVISED autonomy
     holds_handle: bool = False  # the hand is on the handle: a slip can happen
     release_first: bool = False  # open the hand before planning (READY_TO_WALK)
+
+    @property
+    def subject(self) -> str:
+        """What the state asks for, as the operator reads it (``'turn_handle'``, ``'door'``)."""
+        if self.target is not None:
+            return str(self.target)
+        return "door" if self.kind is WorkKind.DETECTION else "close"
 
     @property
     def outcomes(self) -> frozenset[StateOutcome]:
@@ -38,16 +45,16 @@ class StateWork:
 
 
 STATE_WORK: dict[TaskState, StateWork] = {
-    TaskState.DETECT_DOOR: StateWork(WorkKind.DETECTION, "door", critical=True),
+    TaskState.DETECT_DOOR: StateWork(WorkKind.DETECTION, None, critical=True),
     TaskState.WALK_TO_DOOR: StateWork(WorkKind.FOOTSTEPS, WalkGoal.STAND, critical=True),
-    TaskState.MOVE_TO_HANDLE: StateWork(WorkKind.MOTION, "approach_handle", critical=False),
-    TaskState.GRASP: StateWork(WorkKind.GRASP, "close", critical=False),
-    TaskState.TURN_HANDLE: StateWork(WorkKind.MOTION, "turn_handle", critical=True, holds_handle=True),
-    TaskState.PUSH: StateWork(WorkKind.MOTION, "push_door", critical=False, holds_handle=True),
-    TaskState.PULL: StateWork(WorkKind.MOTION, "pull_door", critical=False, holds_handle=True),
-    TaskState.BLOCK: StateWork(WorkKind.MOTION, "block_door", critical=False, holds_handle=True),
-    TaskState.READY_TO_WALK: StateWork(WorkKind.MOTION, "ready_to_walk", critical=False, release_first=True),
+    TaskState.MOVE_TO_HANDLE: StateWork(WorkKind.MOTION, Motion.APPROACH_HANDLE, critical=False),
+    TaskState.GRASP: StateWork(WorkKind.GRASP, None, critical=False),
+    TaskState.TURN_HANDLE: StateWork(WorkKind.MOTION, Motion.TURN_HANDLE, critical=True, holds_handle=True),
+    TaskState.PUSH: StateWork(WorkKind.MOTION, Motion.PUSH_DOOR, critical=False, holds_handle=True),
+    TaskState.PULL: StateWork(WorkKind.MOTION, Motion.PULL_DOOR, critical=False, holds_handle=True),
+    TaskState.BLOCK: StateWork(WorkKind.MOTION, Motion.BLOCK_DOOR, critical=False, holds_handle=True),
+    TaskState.READY_TO_WALK: StateWork(WorkKind.MOTION, Motion.READY_TO_WALK, critical=False, release_first=True),
     TaskState.TO_DOORWAY: StateWork(WorkKind.FOOTSTEPS, WalkGoal.DOORWAY, critical=True),
-    TaskState.TUCK: StateWork(WorkKind.MOTION, "tuck_arm", critical=False),
+    TaskState.TUCK: StateWork(WorkKind.MOTION, Motion.TUCK_ARM, critical=False),
     TaskState.WALK_THROUGH: StateWork(WorkKind.FOOTSTEPS, WalkGoal.THROUGH, critical=True),
 }

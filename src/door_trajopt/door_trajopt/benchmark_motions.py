@@ -27,13 +27,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from door_contract.vocabulary import Side
+from door_contract.vocabulary import Backend, Motion, Side
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import DoorModel
-from door_trajopt.library import Backend, MotionLibrary
-from door_trajopt.motions import Motion, MotionSetup, start_door_for, support_polygon
+from door_trajopt.library import MotionLibrary
+from door_trajopt.motions import MotionSetup, start_door_for, support_polygon
 
 # [Banerjee 2015] Sec. V: 10.1 s per plan for the pull door, 15.5 s for the push door (one guess)
 PUSH_SEQUENCE = {Motion.APPROACH_HANDLE: 10.1, Motion.TURN_HANDLE: 10.1, Motion.PUSH_DOOR: 15.5}

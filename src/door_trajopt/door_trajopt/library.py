@@ -16,14 +16,13 @@ from __future__ import annotations
 import time
 from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
-from enum import Enum
 
 import numpy as np
 
 from door_contract.converters.trajectory import JointPath
+from door_contract.vocabulary import Backend, Motion
 from door_trajopt.chomp import ChompOptions, ChompSolver
 from door_trajopt.motions import (
-    Motion,
     MotionOptions,
     MotionProblem,
     MotionSetup,
@@ -38,11 +37,6 @@ from door_trajopt.sqp import SqpOptions, SqpSolver
 from door_trajopt.timing import time_parameterise
 
 MAX_ATTEMPT_SCALE = 4  # a repeat gets at most this many times the first attempt's iterations
-
-
-class Backend(str, Enum):
-    SQP = "sqp"
-    CHOMP = "chomp"
 
 
 @dataclass(frozen=True)

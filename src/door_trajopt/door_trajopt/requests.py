@@ -16,12 +16,12 @@ import numpy as np
 
 from door_contract.door_estimates import requested_estimate_problem
 from door_contract.payloads import DoorEstimate, MotionRequest
-from door_contract.vocabulary import DoorOpening, Side, grasp_hand
+from door_contract.vocabulary import Backend, DoorOpening, Motion, Side, grasp_hand
 from door_robot.kinematics import RobotKinematics
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
-from door_trajopt.library import Backend, MotionPlan
-from door_trajopt.motions import Motion, MotionOptions, MotionSetup, start_door_for, support_polygon
+from door_trajopt.library import MotionPlan
+from door_trajopt.motions import MotionOptions, MotionSetup, start_door_for, support_polygon
 from door_trajopt.problem import TrajoptError
 
 __all__ = ["MotionJob", "PlanningRefused", "Snapshot", "motion_job", "outcome_details"]
@@ -55,22 +55,18 @@ class MotionJob:
 
 
 def motion_job(request: MotionRequest, snapshot: Snapshot, kinematics: RobotKinematics, options: MotionOptions,
-               default_backend: str, lever_radius: float) -> MotionJob:
+               default_backend: Backend, lever_radius: float) -> MotionJob:
     """The library job of ``request``: raises :class:`PlanningRefused` naming what is wrong or
     missing. The grasping arm follows from the hinge side and opening; motions that use the
     other arm (blocking the door) take the other one."""
-    motion = next((m for m in Motion if m.value == request.motion), None)
-    if motion is None:
-        raise PlanningRefused(f"unknown motion {request.motion!r}; known: " + ", ".join(m.value for m in Motion))
+    motion = Motion(request.motion)  # decoding the request refused any other
     estimate = snapshot.estimate
     problem = requested_estimate_problem(estimate, request.door_stamp)
     if problem or estimate is None:
         raise PlanningRefused(problem or "no door estimate")
     if snapshot.joint_positions is None or snapshot.base_pose is None:
         raise PlanningRefused("no valid joint states / odometry yet")
-    backend = next((b for b in Backend if b.value == (request.backend or default_backend)), None)
-    if backend is None:
-        raise PlanningRefused(f"unknown backend {request.backend!r}; use 'sqp' or 'chomp'")
+    backend = Backend(request.backend or default_backend)
     known = kinematics.joint_names
     body_q = kinematics.configuration({k: v for k, v in snapshot.joint_positions.items() if k in known})
     hand = grasp_hand(estimate.hinge_side, request.opening)

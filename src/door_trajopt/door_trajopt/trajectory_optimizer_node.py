@@ -45,6 +45,7 @@ from door_contract.planner_inputs import PlannerInputs
 from door_contract.planner_service import Finished
 from door_contract.stamps import UniqueStamps, stamp_ns, time_msg_of_ns
 from door_contract.topics import Topics
+from door_contract.vocabulary import Backend
 from door_robot.errors import RobotModelError
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
@@ -80,7 +81,7 @@ class TrajectoryOptimizerNode(Node):
         self.stamps = UniqueStamps()
         self.desk = PlannerDesk(self, self.heartbeat, MotionRequest, (Topics.MOTION_REQUEST, Topics.MOTION_CANCEL),
                                 lambda r: self.inputs.doors.pick(r.door_stamp, r.door), self._job_for,
-                                self._deliver_one, lambda rid, why: self._answer(rid, "?", "", OutcomeStatus.REJECTED, why))
+                                self._deliver_one, lambda rid, why: self._answer(rid, "?", None, OutcomeStatus.REJECTED, why))
         self.get_logger().info(f"ready: {p['robot_profile']}, default backend {p['backend']}")
 
     def _on_joint_states(self, msg: JointState) -> None:
@@ -117,15 +118,15 @@ class TrajectoryOptimizerNode(Node):
 
     def _plan(self, request: MotionRequest, snapshot: Snapshot) -> MotionPlan:
         """On the worker thread (the only user of the robot model and the library)."""
-        job = motion_job(request, snapshot, self.kinematics, self.library.options, self.parameters["backend"],
+        job = motion_job(request, snapshot, self.kinematics, self.library.options, Backend(self.parameters["backend"]),
                          self.lever_radius)
         self.get_logger().info(f"planning {job.motion.value} with the {job.side.value} arm ({job.backend.value})")
         return self.library.plan(job.motion, job.setup, job.start, job.backend, variant=request.request_id,
                                  attempt=request.attempt)
 
-    def _answer(self, request_id: int, motion: str, backend: str, status: OutcomeStatus, reason: str,
+    def _answer(self, request_id: int, motion: str, backend: Backend | None, status: OutcomeStatus, reason: str,
                 plan: MotionPlan | None = None, proposal_stamp_ns: int = -1) -> None:
-        details = outcome_details(plan, backend or self.parameters["backend"], proposal_stamp_ns)
+        details = outcome_details(plan, str(backend or self.parameters["backend"]), proposal_stamp_ns)
         outcome = PlanningOutcome(request_id, status, reason, plan.planning_time_s if plan else 0.0,
                                   without_non_finite(details))  # a diverged plan's NaN cost must not stop it
         self.outcome_pub.publish(String(data=encode(outcome)))

@@ -22,8 +22,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from door_contract.vocabulary import DetectionMode
 from door_detection.automatic import detect_automatic
-from door_detection.estimate import DetectedDoor, DetectionMode, DetectionOutcome, DetectionResult
+from door_detection.estimate import DetectedDoor, DetectionOutcome, DetectionResult
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.view_search import Neck, SearchStep, View, ViewSearch, ViewSearchOptions, plan_views

@@ -22,7 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from door_detection.estimate import DetectedDoor, DetectionMode
+from door_contract.vocabulary import DetectionMode
+from door_detection.estimate import DetectedDoor
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
 from door_detection.tables import (
