@@ -10,9 +10,11 @@ from __future__ import annotations
 
 import importlib
 from dataclasses import dataclass
+from types import MappingProxyType
 
 from door_contract.frames import Frame
 from door_contract.qos import CLOCK, EVENTS, LATCHED, REQUESTS, SENSOR, SERVICE, TF_STREAM, QosSpec
+from door_contract.vocabulary import PlannerKind
 
 
 @dataclass(frozen=True)
@@ -162,6 +164,24 @@ class Topics:
     @classmethod
     def all(cls) -> tuple[TopicSpec, ...]:
         return tuple(v for v in vars(cls).values() if isinstance(v, TopicSpec))
+
+
+@dataclass(frozen=True)
+class PlannerTopics:
+    """One planner's topics: the FSM requests and cancels, the planner proposes and answers."""
+
+    request: TopicSpec
+    proposal: TopicSpec
+    outcome: TopicSpec
+    cancel: TopicSpec
+
+
+PLANNER_TOPICS = MappingProxyType({
+    PlannerKind.FOOTSTEPS: PlannerTopics(Topics.FOOTSTEP_REQUEST, Topics.FOOTSTEP_PROPOSAL, Topics.FOOTSTEP_OUTCOME,
+                                         Topics.FOOTSTEP_CANCEL),
+    PlannerKind.MOTION: PlannerTopics(Topics.MOTION_REQUEST, Topics.MOTION_PROPOSAL, Topics.MOTION_OUTCOME,
+                                      Topics.MOTION_CANCEL)})
+"""Each planner's topics, by kind (read-only)."""
 
 
 class Services:

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from enum import StrEnum
 
-__all__ = ["Backend", "DetectionMode", "DoorOpening", "Foot", "HingeSide", "Motion", "Side", "WalkGoal", "grasp_hand"]
+__all__ = ["Backend", "DetectionMode", "DoorOpening", "Foot", "HingeSide", "Motion", "PlannerKind", "Side", "WalkGoal", "grasp_hand"]
 
 
 class DoorOpening(StrEnum):
@@ -111,3 +111,11 @@ class DetectionMode(StrEnum):
     AUTOMATIC = "automatic"
     OPERATOR = "operator"
     """Operator-aided: from the operator's scribble on the handle."""
+
+
+class PlannerKind(StrEnum):
+    """Which planner a request goes to and a proposal comes from (its topics:
+    :data:`door_contract.topics.PLANNER_TOPICS`)."""
+
+    FOOTSTEPS = "footsteps"
+    MOTION = "motion"

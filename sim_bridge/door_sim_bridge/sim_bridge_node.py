@@ -28,6 +28,7 @@ from trajectory_msgs.msg import JointTrajectory
 
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.footsteps import path_to_footsteps
+from door_contract.converters.stop import is_stop
 from door_contract.converters.trajectory import msg_to_joint_path
 from door_contract.errors import ContractError
 from door_contract.node_support import (
@@ -77,20 +78,18 @@ class SimBridgeNode(Node):
 
     # ------------------------------------------------------------------ commands
     def _on_trajectory(self, msg: JointTrajectory) -> None:
-        self._on_command(ExecutionKind.TRAJECTORY, msg, not msg.points,
-                         "a JointTrajectory without points (stop and hold)", msg_to_joint_path,
-                         TrajectoryExecution.from_joint_path)
+        self._on_command(ExecutionKind.TRAJECTORY, msg, "a JointTrajectory without points (stop and hold)",
+                         msg_to_joint_path, TrajectoryExecution.from_joint_path)
 
     def _on_footsteps(self, msg: Path) -> None:
-        self._on_command(ExecutionKind.FOOTSTEPS, msg, not msg.poses,
-                         "an empty footstep plan (stop at the next stable stance)", path_to_footsteps,
-                         FootstepExecution)
+        self._on_command(ExecutionKind.FOOTSTEPS, msg, "an empty footstep plan (stop at the next stable stance)",
+                         path_to_footsteps, FootstepExecution)
 
-    def _on_command(self, kind: ExecutionKind, msg: Any, empty: bool, stop_reason: str,
+    def _on_command(self, kind: ExecutionKind, msg: Any, stop_reason: str,
                     convert: Callable[[Any], Any], build: Callable[[DoorWorld, Any], Execution]) -> None:
         """An empty command stops the running execution of its kind; else the message is
         converted (a ContractError rejects it, naming why) and handed to the loop."""
-        if empty:
+        if is_stop(msg):
             self._handle(self.loop.stop(kind, stop_reason))
             return
         request_id = stamp_ns(msg.header.stamp)
@@ -114,18 +113,13 @@ class SimBridgeNode(Node):
         return response
 
     def _handle(self, report: LoopReport) -> None:
-        """Log and publish what the loop reports."""
-        for fault in report.faults:
-            self.get_logger().error(f"contained a bug: {fault}")
-        stop = report.stop
-        if stop is not None and stop.dead_man:
-            self.get_logger().error(stop.why)
-        if stop is not None and stop.stopped is None:
-            self.get_logger().info(f"stop ({stop.why}): no such execution running")
-        elif stop is not None:
-            self.get_logger().warning(f"stopping {stop.stopped}: {stop.why}")
-        if report.started is not None:
-            self.get_logger().info(f"executing {report.started}")
+        """Log and publish what the loop reports (rclpy: one severity per call site)."""
+        for line in report.errors:
+            self.get_logger().error(line)
+        for line in report.warnings:
+            self.get_logger().warning(line)
+        for line in report.notes:
+            self.get_logger().info(line)
         for outcome in report.outcomes:
             self._report(outcome)
 

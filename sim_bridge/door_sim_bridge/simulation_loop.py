@@ -119,6 +119,25 @@ class LoopReport:
     stop: Stop | None = None
     started: Running | None = None
 
+    @property
+    def errors(self) -> list[str]:
+        """Log lines of severity ERROR: contained bugs, a dead-man stop."""
+        lines = [f"contained a bug: {fault}" for fault in self.faults]
+        return lines + ([self.stop.why] if self.stop is not None and self.stop.dead_man else [])
+
+    @property
+    def warnings(self) -> list[str]:
+        """Log lines of severity WARNING: an execution stopped."""
+        stop = self.stop
+        return [f"stopping {stop.stopped}: {stop.why}"] if stop is not None and stop.stopped is not None else []
+
+    @property
+    def notes(self) -> list[str]:
+        """Log lines of severity INFO: a stop with nothing to stop, an execution started."""
+        stop = self.stop
+        lines = [f"stop ({stop.why}): no such execution running"] if stop is not None and stop.stopped is None else []
+        return lines + ([f"executing {self.started}"] if self.started is not None else [])
+
 
 class SimulationLoop:
     def __init__(self, world: DoorWorld, deadman: DeadMan, rates: PublicationRates, real_time: bool,

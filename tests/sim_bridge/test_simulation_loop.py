@@ -17,8 +17,10 @@ from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.execution import TrajectoryExecution
 from door_sim_bridge.simulation_loop import (
     STEPS_PER_TICK,
+    LoopReport,
     PublicationRates,
     SimulationLoop,
+    Stop,
     Stream,
     TickStage,
 )
@@ -233,3 +235,13 @@ def test_a_bug_in_a_grasp_is_a_refused_call_and_a_reported_fault():
     success, message, report = loop.grasp(Side.RIGHT, True)
     assert not success and message.startswith("internal error: operating a gripper failed")
     assert [f.stage for f in report.faults] == [TickStage.GRASP] and loop.fault_count == 1
+
+
+def test_a_report_sorts_its_log_lines_by_severity():
+    """The node logs each list at its own call site (rclpy: one severity per call site)."""
+    quiet = LoopReport(stop=Stop("an empty footstep plan", None))
+    assert quiet.notes == ["stop (an empty footstep plan): no such execution running"]
+    assert quiet.errors == [] and quiet.warnings == []
+    dead = LoopReport(stop=Stop("supervisor silent for 2.0 s", None, dead_man=True))
+    assert dead.errors == ["supervisor silent for 2.0 s"]
+    assert LoopReport().errors == LoopReport().warnings == LoopReport().notes == []

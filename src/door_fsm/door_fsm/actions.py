@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from door_contract.vocabulary import Motion, WalkGoal
+from door_contract.vocabulary import Motion, PlannerKind, WalkGoal
 
 
 @dataclass(frozen=True)
@@ -31,7 +31,7 @@ class CancelPlanning:
     """Tell the planner to drop ``request_id`` (it answers SUPERSEDED and proposes nothing)."""
 
     request_id: int
-    kind: str  # "footsteps" | "motion"
+    kind: PlannerKind
     reason: str
 
 
@@ -54,7 +54,7 @@ class Execute:
     """Send the approved proposal of ``request_id`` to the robot."""
 
     request_id: int
-    kind: str  # "footsteps" | "motion"
+    kind: PlannerKind
 
 
 @dataclass(frozen=True)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 from door_fsm.operator_commands import OperatorWord
 
@@ -37,6 +38,13 @@ class GraspAnswered:
     request_id: int
     succeeded: bool
     message: str = ""
+
+    @classmethod
+    def of_response(cls, request_id: int, response: Any) -> GraspAnswered:
+        """From a SetBool response (``success``, ``message``), or None when the call got none."""
+        if response is None:
+            return cls(request_id, False, "no answer")
+        return cls(request_id, bool(response.success), str(response.message))
 
 
 @dataclass(frozen=True)

@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from door_contract.payloads import OutcomeStatus, PlanningOutcome
+from door_contract.vocabulary import PlannerKind
 
 
 @dataclass(frozen=True)
@@ -63,7 +64,7 @@ class PlanExchange:
         for key in [k for k, o in self._outcomes.items() if o.request_id != request_id]:
             del self._outcomes[key]
 
-    def add_message(self, kind: str, stamp_ns: int, message: Any) -> Proposal | None:
+    def add_message(self, kind: PlannerKind, stamp_ns: int, message: Any) -> Proposal | None:
         """A proposal message arrived; returns the pair when its outcome is already here."""
         outcome = self._outcomes.pop((kind, stamp_ns), None)
         if outcome is None:
@@ -71,7 +72,7 @@ class PlanExchange:
             return None
         return self._pair(outcome, message)
 
-    def add_outcome(self, kind: str, outcome: PlanningOutcome) -> Proposal | PlanningOutcome | None:
+    def add_outcome(self, kind: PlannerKind, outcome: PlanningOutcome) -> Proposal | PlanningOutcome | None:
         """A planning outcome arrived. Returns None when it is stale or waits for its message,
         the outcome itself when it is a failure of the current request, else the pair."""
         if outcome.request_id != self.current:

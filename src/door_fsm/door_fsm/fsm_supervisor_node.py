@@ -17,10 +17,9 @@ from rclpy.clock import Clock, ClockType
 from rclpy.node import Node
 from std_msgs.msg import String
 from std_srvs.srv import SetBool
-from trajectory_msgs.msg import JointTrajectory
 
 from door_contract.converters.diagnostics import Health
-from door_contract.frames import Frame
+from door_contract.converters.stop import stop_messages
 from door_contract.node_support import (
     Heartbeat,
     as_parameter_error,
@@ -31,7 +30,7 @@ from door_contract.node_support import (
 )
 from door_contract.payloads import PlanningCancel, encode
 from door_contract.stamps import UniqueStamps, time_msg_of_ns
-from door_contract.topics import Topics, TopicSpec
+from door_contract.topics import PLANNER_TOPICS, Topics, TopicSpec
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.machine import MachineOptionsError
@@ -42,9 +41,6 @@ from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
 
 HEARTBEAT_PERIOD_S = 0.25  # 4 Hz: the sim bridge's dead-man stops the robot when this heartbeat falls silent
-KINDS = {"footsteps": (Topics.FOOTSTEP_REQUEST, Topics.FOOTSTEP_PROPOSAL, Topics.FOOTSTEP_OUTCOME, Topics.FOOTSTEP_CANCEL),
-         "motion": (Topics.MOTION_REQUEST, Topics.MOTION_PROPOSAL, Topics.MOTION_OUTCOME, Topics.MOTION_CANCEL)}
-"""Each planner's topics: request, proposal, outcome, cancel."""
 
 
 class FsmSupervisorNode(Node):
@@ -62,12 +58,12 @@ class FsmSupervisorNode(Node):
             act.ClearApproval: lambda a: self.pubs[Topics.APPROVAL_REQUEST].publish(String(data="")),
             act.Notice: lambda a: self.get_logger().warning(a.text),
             act.RequestFootsteps: self._request, act.RequestMotion: self._request,
-            act.CancelPlanning: lambda a: self.pubs[KINDS[a.kind][3]].publish(
+            act.CancelPlanning: lambda a: self.pubs[PLANNER_TOPICS[a.kind].cancel].publish(
                 String(data=encode(PlanningCancel(a.request_id, a.reason)))),
             act.CallGrasp: self._call_grasp, act.Execute: self._execute}
         self.pubs = {topic: create_contract_publisher(self, topic) for topic in (
             Topics.TASK_STATE, Topics.APPROVAL_REQUEST, Topics.TASK_REPORT, Topics.FOOTSTEP_PLAN, Topics.ARM_TRAJECTORY,
-            *(topics[i] for topics in KINDS.values() for i in (0, 3)))}
+            *(t for topics in PLANNER_TOPICS.values() for t in (topics.request, topics.cancel)))}
         self._subscribe()
         self.grasp_clients = {side: self.create_client(spec.srv_class(), spec.name, qos_profile=spec.qos.to_profile())
                               for side, spec in robot.grasp_services().items()}
@@ -81,9 +77,9 @@ class FsmSupervisorNode(Node):
         def feed(topic: TopicSpec, take: Callable[[Any, Instant], list[act.Action]], text: bool = True) -> None:
             create_contract_subscription(self, topic, lambda msg: self._run(take(msg.data if text else msg,
                                                                                  self._now())))
-        for kind, (_, proposal, outcome, _) in KINDS.items():
-            feed(proposal, partial(core.proposal, kind), text=False)
-            feed(outcome, partial(core.planning_outcome, kind))
+        for kind, topics in PLANNER_TOPICS.items():
+            feed(topics.proposal, partial(core.proposal, kind), text=False)
+            feed(topics.outcome, partial(core.planning_outcome, kind))
         feed(Topics.DOOR_ESTIMATE, core.door_estimate)
         feed(Topics.EXECUTION_OUTCOME, core.execution_outcome)
         feed(Topics.OPERATOR, self._operator)
@@ -127,13 +123,11 @@ class FsmSupervisorNode(Node):
 
     def _request(self, action: act.RequestFootsteps | act.RequestMotion) -> None:
         kind, request = self.core.request(action)
-        self.pubs[KINDS[kind][0]].publish(String(data=encode(request)))
+        self.pubs[PLANNER_TOPICS[kind].request].publish(String(data=encode(request)))
 
     def _stop(self, action: act.StopMotion) -> None:
         """ros2_control's stop: an empty trajectory holds the arm; an empty path ends the walk."""
-        stamp = time_msg_of_ns(self.stamps.next(self.get_clock().now().nanoseconds))
-        trajectory, path = JointTrajectory(), Path()
-        trajectory.header.stamp, path.header.stamp, path.header.frame_id = stamp, stamp, Frame.ODOM.value
+        trajectory, path = stop_messages(time_msg_of_ns(self.stamps.next(self.get_clock().now().nanoseconds)))
         self.pubs[Topics.ARM_TRAJECTORY].publish(trajectory)
         self.pubs[Topics.FOOTSTEP_PLAN].publish(path)
         self.get_logger().warning(f"stopping all motion: {action.reason}")
@@ -142,18 +136,15 @@ class FsmSupervisorNode(Node):
         hand, problem = self.core.grasp_hand()
         client = self.grasp_clients.get(hand)
         if problem or client is None or not client.service_is_ready():
-            self._feed(ev.GraspAnswered(action.request_id, False, problem or f"/{hand}_hand/grasp is not available"))
-            return
+            return self._feed(ev.GraspAnswered(action.request_id, False, problem or f"/{hand}_hand/grasp is not available"))
         future = client.call_async(SetBool.Request(data=action.close))
-        future.add_done_callback(lambda f, rid=action.request_id: self._feed(ev.GraspAnswered(
-            rid, bool(f.result() and f.result().success), f.result().message if f.result() else "no answer")))
+        future.add_done_callback(lambda f, rid=action.request_id: self._feed(ev.GraspAnswered.of_response(rid, f.result())))
 
     def _execute(self, action: act.Execute) -> None:
         stamp = self.stamps.next(self.get_clock().now().nanoseconds)
         message = self.core.take(action.request_id, stamp)
         if message is None:
-            self._feed(ev.ExecutionFinished(action.request_id, False, "the approved proposal is gone"))
-            return
+            return self._feed(ev.ExecutionFinished(action.request_id, False, "the approved proposal is gone"))
         message.header.stamp = time_msg_of_ns(stamp)
         self.pubs[Topics.FOOTSTEP_PLAN if isinstance(message, Path) else Topics.ARM_TRAJECTORY].publish(message)
 

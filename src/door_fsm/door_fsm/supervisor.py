@@ -32,7 +32,7 @@ from door_contract.payloads import (
 )
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Services, ServiceSpec
-from door_contract.vocabulary import Backend, DoorOpening, Side
+from door_contract.vocabulary import Backend, DoorOpening, PlannerKind, Side
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.answers import execution_event, planning_event, usable_door_estimate
@@ -104,11 +104,11 @@ class Supervisor:
         self.door.approved = estimate
         return self.handle(ev.ProposalReady(request, door_summary(estimate)), now)
 
-    def proposal(self, kind: str, message: Any, now: Instant) -> list[act.Action]:
+    def proposal(self, kind: PlannerKind, message: Any, now: Instant) -> list[act.Action]:
         """A planner's proposal message (a Path or JointTrajectory), known by its stamp."""
         return self._answer(self.exchange.add_message(kind, stamp_ns(message.header.stamp), message), now)
 
-    def planning_outcome(self, kind: str, text: str, now: Instant) -> list[act.Action]:
+    def planning_outcome(self, kind: PlannerKind, text: str, now: Instant) -> list[act.Action]:
         """A planner's PlanningOutcome payload."""
         try:
             outcome = decode(PlanningOutcome, text)
@@ -164,11 +164,12 @@ class Supervisor:
         self.exchange.begin(self.machine.request_id)
 
     # ------------------------------------------------------------------ what the node sends
-    def request(self, action: act.RequestFootsteps | act.RequestMotion) -> tuple[str, FootstepRequest | MotionRequest]:
-        """The planner (``footsteps`` | ``motion``) and the request payload of ``action``."""
+    def request(self, action: act.RequestFootsteps | act.RequestMotion
+                ) -> tuple[PlannerKind, FootstepRequest | MotionRequest]:
+        """The planner and the request payload of ``action``."""
         if isinstance(action, act.RequestFootsteps):
-            return "footsteps", self.door.footstep_request(action)
-        return "motion", self.door.motion_request(action)
+            return PlannerKind.FOOTSTEPS, self.door.footstep_request(action)
+        return PlannerKind.MOTION, self.door.motion_request(action)
 
     def grasp_hand(self) -> tuple[Side, str]:
         """The hand that opens this door, and why it cannot ("" if it can)."""
