@@ -16,6 +16,7 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 from door_robot.meshes import MeshUris, rewrite_mesh_uris
+from door_sim_bridge.world import DoorWorld
 from door_sim_bridge.world.robot_urdf import resolve_mesh
 
 
@@ -34,14 +35,14 @@ def profile_mesh_names(urdf_text: str, profile_urdf: Path) -> str:
     return ET.tostring(root, encoding="unicode") if renamed else urdf_text
 
 
-def loaded_urdf(world) -> tuple[str, Path]:
+def loaded_urdf(world: DoorWorld) -> tuple[str, Path]:
     """The URDF text ``world`` (a DoorWorld) loaded, its meshes named as in the profile's URDF,
     and that file (``package://`` URIs are resolved relative to it)."""
     path = Path(world.profile.urdf_path)
     return profile_mesh_names(world.robot.urdf_text, path), path
 
 
-def robot_description(world, mesh_uris: MeshUris = MeshUris.PACKAGE) -> str:
+def robot_description(world: DoorWorld, mesh_uris: MeshUris = MeshUris.PACKAGE) -> str:
     """What /robot_description carries: the loaded URDF, meshes as ``mesh_uris`` says."""
     text, path = loaded_urdf(world)
     return rewrite_mesh_uris(text, path, mesh_uris)

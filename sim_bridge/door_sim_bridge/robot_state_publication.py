@@ -17,10 +17,11 @@ from door_contract.topics import Topics
 from door_robot.meshes import MeshUris
 from door_sim_bridge.robot_description import loaded_urdf, robot_description
 from door_sim_bridge.tf_tree import world_tf_tree
+from door_sim_bridge.world import DoorWorld
 
 
 class RobotStatePublication:
-    def __init__(self, node: Node, world, mesh_uris: MeshUris, now: float) -> None:
+    def __init__(self, node: Node, world: DoorWorld, mesh_uris: MeshUris, now: float) -> None:
         description = create_contract_publisher(node, Topics.ROBOT_DESCRIPTION)
         description.publish(String(data=robot_description(world, mesh_uris)))
         self._tf = None

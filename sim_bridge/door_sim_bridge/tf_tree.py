@@ -27,6 +27,7 @@ import numpy as np
 
 from door_contract.frames import Frame, FrameTransform
 from door_sim_bridge.urdf_joints import joint_transforms, root_link, urdf_joints
+from door_sim_bridge.world import DoorWorld
 from door_sim_bridge.world.transforms import invert
 
 
@@ -85,7 +86,7 @@ def compose(transforms: tuple[FrameTransform, ...] | list[FrameTransform], sourc
     return result
 
 
-def world_tf_tree(world, urdf_text: str) -> RobotTfTree:
+def world_tf_tree(world: DoorWorld, urdf_text: str) -> RobotTfTree:
     """The tree of a ``DoorWorld``: its robot's URDF and its head camera's optical offset,
     ``camera_link_T_optical = (odom_T_camera_link)⁻¹ · odom_T_optical``."""
     camera_link = world.profile.head_camera_frame

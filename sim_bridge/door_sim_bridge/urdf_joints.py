@@ -18,6 +18,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.urdf_elements import required_child
 
 ROTATING = frozenset({"revolute", "continuous"})
 SLIDING = frozenset({"prismatic"})
@@ -39,7 +40,7 @@ class UrdfJoint:
         return self.kind in ROTATING | SLIDING
 
 
-def _vector(element, attribute: str, default: str) -> np.ndarray:
+def _vector(element: ElementTree.Element | None, attribute: str, default: str) -> np.ndarray:
     text = element.get(attribute, default) if element is not None else default
     try:
         return np.array([float(v) for v in text.split()], dtype=float).reshape(3)
@@ -47,7 +48,7 @@ def _vector(element, attribute: str, default: str) -> np.ndarray:
         raise SimulationError(f"robot description: {attribute}={text!r} is not three numbers") from None
 
 
-def _joint(element) -> UrdfJoint:
+def _joint(element: ElementTree.Element) -> UrdfJoint:
     origin_element = element.find("origin")
     origin = np.eye(4)
     origin[:3, :3] = Rotation.from_euler("xyz", _vector(origin_element, "rpy", "0 0 0")).as_matrix()
@@ -58,8 +59,8 @@ def _joint(element) -> UrdfJoint:
         if kind in ROTATING | SLIDING:
             raise SimulationError(f"robot description: joint {element.get('name')!r} has a zero axis")
         axis = np.array([1.0, 0.0, 0.0])  # a fixed joint's axis means nothing (TALOS writes 0 0 0)
-    return UrdfJoint(element.get("name", ""), kind, element.find("parent").get("link", ""),
-                     element.find("child").get("link", ""), origin, axis / np.linalg.norm(axis))
+    return UrdfJoint(element.get("name", ""), kind, required_child(element, "parent").get("link", ""),
+                     required_child(element, "child").get("link", ""), origin, axis / np.linalg.norm(axis))
 
 
 def urdf_joints(urdf_text: str) -> tuple[UrdfJoint, ...]:

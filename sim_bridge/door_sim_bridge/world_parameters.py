@@ -16,7 +16,7 @@ COLOUR_PARAMETERS = ("door_colour", "frame_colour", "handle_colour", "wall_colou
 def world_config(p: dict[str, Any]) -> WorldConfig:
     """The world of the node's parameters (SimulationError names a bad field)."""
     camera_rate = p["camera_rate"] if p["camera_rate"] > 0 else 1.0
-    colours = {name: tuple(p[name]) for name in COLOUR_PARAMETERS}
+    colours: dict[str, Any] = {name: tuple(p[name]) for name in COLOUR_PARAMETERS}  # DoorConfig checks each
     return WorldConfig(
         robot_profile=p["robot_profile"], physics_rate=p["physics_rate"], seed=p["seed"],
         grasp_break_force=p["grasp_break_force"],

@@ -138,7 +138,8 @@ class FootstepExecution(Execution):
     @property
     def steps_done(self) -> int:
         """Footsteps completed so far."""
-        return self.world.balance.controller.steps_landed if self.world.physical else self._index
+        balance = self.world.balance  # not None exactly when the world is physical
+        return balance.controller.steps_landed if balance is not None else self._index
 
     def _on_start(self) -> None:
         if not self.world.physical:

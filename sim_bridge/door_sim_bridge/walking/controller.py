@@ -92,7 +92,7 @@ class WalkingController:
         self.stabilizer = Stabilizer(stabilizer, self.robot.total_mass() * 9.81)
         self.mode = BalanceMode.STANDING
         self._upper = {name: 0.0 for name in self.joints.upper_body}
-        self._trajectory = None
+        self._trajectory: placo.WPGTrajectory | None = None
         self._walk_time = 0.0
         self._support_side: str | None = None
         self._anchor_foot = Foot.LEFT
@@ -253,14 +253,20 @@ class WalkingController:
         """Standing: where the CoP should be — under the CoM of the commanded posture."""
         return np.array(self.robot.com_world()[:2])
 
+    def _walk_trajectory(self) -> placo.WPGTrajectory:
+        """The walk's pattern; SimulationError if there is none (a bug: every walk has one)."""
+        if self._trajectory is None:
+            raise SimulationError("walking without a walking pattern")
+        return self._trajectory
+
     def _walk_references(self, measurement: Measurement) -> None:
-        trajectory, t = self._trajectory, self._walk_time
+        trajectory, t = self._walk_trajectory(), self._walk_time
         if self._stopping:
             self._replan_stop(t)
             if self.mode is BalanceMode.STANDING:
                 self._stand_references(measurement)
                 return
-            trajectory = self._trajectory
+            trajectory = self._walk_trajectory()
         if t >= trajectory.t_end:
             self._stand_here()
             self._stand_references(measurement)
@@ -275,7 +281,7 @@ class WalkingController:
         self._track_support(trajectory, t, measurement)
         self._walk_time += self.dt
 
-    def _hold_stance_feet(self, trajectory, t: float, measurement: Measurement) -> None:
+    def _hold_stance_feet(self, trajectory: placo.WPGTrajectory, t: float, measurement: Measurement) -> None:
         """Feet on the ground are held where they are measured, not where they were planned:
         the IK then moves the swing foot to its target in odom from the real stance foot (a
         stance foot that slipped would otherwise carry its error into the next landing)."""
@@ -290,7 +296,7 @@ class WalkingController:
         placo's ``make_supports`` over [trailing, leading, beside]; the first one carries the
         elapsed ratio, as placo's own ``replan_supports`` does)."""
         self._stopping = False
-        trajectory = self._trajectory
+        trajectory = self._walk_trajectory()
         current = trajectory.get_support(t)
         if current.end:  # already ending at a stance
             return
@@ -321,19 +327,19 @@ class WalkingController:
             self._stopping = True
             self.steps_planned = self.steps_landed + (1 if current.is_both() else 2)
 
-    def _footstep(self, side, frame: np.ndarray) -> placo.Footstep:
+    def _footstep(self, side: placo.HumanoidRobot_Side, frame: np.ndarray) -> placo.Footstep:
         step = placo.Footstep(self.profile.walking.foot_width, self.profile.walking.foot_length)
         step.side, step.frame = side, np.array(frame, dtype=float)
         return step
 
-    def _beside(self, frame: np.ndarray, side) -> np.ndarray:
+    def _beside(self, frame: np.ndarray, side: placo.HumanoidRobot_Side) -> np.ndarray:
         """The sole frame beside ``frame`` at the standing foot separation, towards ``side``."""
         lateral = self.profile.walking.foot_separation * (1.0 if side == placo.HumanoidRobot_Side.left else -1.0)
         beside = np.array(frame, dtype=float)
         beside[:3, 3] = beside[:3, 3] + beside[:3, :3] @ np.array([0.0, lateral, 0.0])
         return beside
 
-    def _support_duration(self, support) -> float:
+    def _support_duration(self, support: placo.Support) -> float:
         gait = self.gait
         double = gait.double_support_ratio * gait.single_support_s
         if not support.is_both():
@@ -341,9 +347,9 @@ class WalkingController:
         return double * gait.start_end_ratio if (support.start or support.end) else double
 
     def _generator_com_height(self) -> float:
-        return float(self._trajectory.get_p_world_CoM(0.0)[2])
+        return float(self._walk_trajectory().get_p_world_CoM(0.0)[2])
 
-    def _track_support(self, trajectory, t: float, measurement: Measurement) -> None:
+    def _track_support(self, trajectory: placo.WPGTrajectory, t: float, measurement: Measurement) -> None:
         """A single support that ends is a landing; one that begins re-anchors the model on
         the measured sole it stands on."""
         side = None if trajectory.support_is_both(t) else str(trajectory.support_side(t))

@@ -24,6 +24,7 @@ import placo
 
 from door_robot.profile import RobotProfile, Side
 from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.urdf_elements import joint_link, required_attribute, required_child
 
 PLACO_FOOT_FRAMES = {Side.LEFT: "left_foot", Side.RIGHT: "right_foot"}
 PLACO_TRUNK_FRAME = "trunk"
@@ -41,16 +42,17 @@ class JointSplit:
 def joint_split(urdf_text: str, feet: dict[Side, str]) -> JointSplit:
     """Leg joints: movable joints on the paths from the root link to the sole frames."""
     root = ET.fromstring(urdf_text)
-    parent_joint = {joint.find("child").get("link"): joint for joint in root.findall("joint")}
+    parent_joint = {required_child(joint, "child").get("link"): joint for joint in root.findall("joint")}
     legs: list[str] = []
     for sole in feet.values():
         link = sole
         while link in parent_joint:
             joint = parent_joint[link]
             if joint.get("type") in MOVABLE and joint.get("name") not in legs:
-                legs.append(joint.get("name"))
-            link = joint.find("parent").get("link")
-    movable = [j.get("name") for j in root.findall("joint") if j.get("type") in MOVABLE and j.find("mimic") is None]
+                legs.append(required_attribute(joint, "name"))
+            link = joint_link(joint, "parent")
+    movable = [required_attribute(j, "name") for j in root.findall("joint")
+               if j.get("type") in MOVABLE and j.find("mimic") is None]
     if not legs:
         raise SimulationError("no leg joints between the base and the soles")
     return JointSplit(tuple(name for name in movable if name in legs),

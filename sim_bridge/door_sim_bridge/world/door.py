@@ -177,6 +177,7 @@ def _static_boxes(door: DoorConfig) -> list[tuple[str, tuple[float, ...], tuple[
     side_width = WALL_HALF_WIDTH - outer_half
     wall_height = max(WALL_HEIGHT, opening_top + FRAME_WIDTH + 0.3)
     mid_x = WALL_THICKNESS / 2.0
+    boxes: list[tuple[str, tuple[float, ...], tuple[float, ...]]]
     boxes = [("wall", (mid_x, sign * (outer_half + side_width / 2.0), wall_height / 2.0),
               (WALL_THICKNESS, side_width, wall_height)) for sign in (1.0, -1.0)]
     above = wall_height - opening_top - FRAME_WIDTH

@@ -65,7 +65,7 @@ def net_wrench(forces: Iterable[tuple[np.ndarray, np.ndarray]]) -> ContactWrench
     items = [(np.asarray(f, dtype=float), np.asarray(p, dtype=float)) for f, p in forces]
     if not items:
         return ContactWrench.none()
-    total = sum(force for force, _ in items)
+    total = sum((force for force, _ in items), np.zeros_like(items[0][0]))
     weights = np.array([np.linalg.norm(force) for force, _ in items])
     if weights.sum() < 1e-9:
         return ContactWrench.none()

@@ -19,12 +19,17 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from door_robot.locations import cmeel_share_dir
 from door_robot.profile import RobotProfile
 from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.urdf_elements import joint_link, required_child
+
+if TYPE_CHECKING:  # world.robot imports this module (for the URDF it loads)
+    from door_sim_bridge.world.robot import SimRobot
 
 SOLE_THICKNESS = 0.02  # m
 # kg·m², least moment of inertia of a sole link about each of its axes. The foot stands in
@@ -58,7 +63,7 @@ def _origin_matrix(joint: ET.Element) -> np.ndarray:
 def sole_placement(root: ET.Element, sole_frame: str) -> SolePlacement:
     """Follow fixed joints up from ``sole_frame`` to the first link with a collision shape
     or a movable parent joint: the link whose shapes touch the floor."""
-    parent_joint = {joint.find("child").get("link"): joint for joint in root.findall("joint")}
+    parent_joint = {required_child(joint, "child").get("link"): joint for joint in root.findall("joint")}
     links = {link.get("name"): link for link in root.findall("link")}
     if sole_frame not in links:
         raise SimulationError(f"URDF has no link {sole_frame!r} (a foot of the profile)")
@@ -67,7 +72,7 @@ def sole_placement(root: ET.Element, sole_frame: str) -> SolePlacement:
             and links[link].find("collision") is None:
         joint = parent_joint[link]
         offset = _origin_matrix(joint) @ offset
-        link = joint.find("parent").get("link")
+        link = joint_link(joint, "parent")
     return SolePlacement(link, offset)
 
 
@@ -174,7 +179,7 @@ def _absolute_meshes(root: ET.Element, urdf_folder: Path) -> None:
             mesh.set("filename", resolve_mesh(filename, urdf_folder))
 
 
-def sole_placement_link(robot, sole_frame: str) -> int:
+def sole_placement_link(robot: SimRobot, sole_frame: str) -> int:
     """PyBullet link index of the link whose (box) sole touches the floor under ``sole_frame``
     (``robot`` is a :class:`~door_sim_bridge.world.robot.SimRobot`)."""
     return robot.link_index(sole_placement(ET.fromstring(robot.urdf_text), sole_frame).carrier_link)

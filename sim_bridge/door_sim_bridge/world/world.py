@@ -119,8 +119,9 @@ class DoorWorld:
         self.robot.hide_links(self.config.camera.robot_visuals)
         self._grasps = GraspController(self._client, self.robot, self.door, self.config.grasp_distance,
                                        self.config.grasp_break_force, self.config.grasp_break_steps)
+        # the floor exists exactly for the physical robot
         self.balance = (BalanceLoop(self._client, self.robot, self._floor, self.door.body, self.config,
-                                    self._grasps.holding) if physical else None)
+                                    self._grasps.holding) if self._floor is not None else None)
 
     def _set_sole_friction(self, friction: float) -> None:
         for link in self.profile.feet.values():
@@ -415,7 +416,7 @@ class DoorWorld:
     def door_ground_truth(self) -> DoorGroundTruth:
         return self.door.ground_truth()
 
-    def apply_door_force(self, force: Sequence[float], point: Sequence[float],
+    def apply_door_force(self, force: Sequence[float] | np.ndarray, point: Sequence[float] | np.ndarray,
                          part: DoorPart = DoorPart.LEAF, steps: int = 1) -> None:
         """Push ``part`` with ``force`` (N, odom axes) at ``point`` (odom) for the next ``steps`` steps.
 
