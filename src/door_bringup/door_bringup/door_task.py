@@ -33,6 +33,7 @@ from rclpy.node import Node
 from std_msgs.msg import String
 
 from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH, NodeLaunch
+from door_bringup.interrupts import interrupt_on_sigterm
 from door_bringup.params_files import ROBOT_PARAMETER, robot_nodes
 from door_bringup.processes import ProcessSupervisor
 from door_bringup.progress_monitor import ProgressMonitor
@@ -237,6 +238,7 @@ def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
 
 def main(argv: list[str] | None = None) -> int:
     options, run_dir = parse_options(argv)
+    interrupt_on_sigterm()
     workspace = Workspace(repository_root())
     stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%SZ")
     run_dir = run_dir or workspace.root / "runs" / f"{stamp}_{options.robot}_{options.opening}_{options.hinge}"

@@ -19,6 +19,7 @@ import argparse
 import json
 import multiprocessing
 import os
+import signal
 import statistics
 import sys
 import time
@@ -31,6 +32,7 @@ from pathlib import Path
 import numpy as np
 
 from door_bringup.door_task import TaskOptions, run_task
+from door_bringup.interrupts import interrupt_on_sigterm
 from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.table_one import format_table, phase_of, phase_rows
 from door_bringup.workspace import Workspace, repository_root
@@ -73,6 +75,7 @@ def main(argv: list[str] | None = None) -> int:
     if args.trials < 1 or args.jobs < 1:
         parser.error("--trials and --jobs must be at least 1")
     check_robot(parser, args.robot)
+    interrupt_on_sigterm()
     workspace = Workspace(repository_root())
     settings = {"robot": args.robot, "trials": args.trials, "seed": args.seed, "autonomy": args.autonomy,
                 "camera_rate": args.camera_rate, "openings": sorted(args.openings), "timeout": args.timeout}
@@ -158,17 +161,35 @@ def run_trials(trials: list[TaskOptions], out: Path, workspace: Workspace, jobs:
             domains.put((first + offset) % 233)  # the domain ids DDS allows on one host
         with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
                                  initializer=_take_domain, initargs=(domains,)) as pool:
-            futures = {pool.submit(run_trial, trials[index], out / f"trial_{index:03d}", workspace): index
+            futures = {pool.submit(_run_in_worker, trials[index], out / f"trial_{index:03d}", workspace): index
                        for index in pending}
-            for future in as_completed(futures):
-                finished(futures[future], future.result())
+            try:
+                for future in as_completed(futures):
+                    finished(futures[future], future.result())
+            except KeyboardInterrupt:  # Ctrl-C or SIGTERM: each worker stops its graph, no trial is started
+                pool.shutdown(wait=False, cancel_futures=True)
+                for worker in multiprocessing.active_children():
+                    if worker.pid is not None:
+                        os.kill(worker.pid, signal.SIGTERM)
+                raise
     print(file=sys.stderr)
     return [reports[index] for index in range(len(trials))]
 
 
 def _take_domain(domains: multiprocessing.Queue) -> None:
-    """A pool worker's ROS domain, for good: its graphs never share DDS with another worker's."""
+    """A pool worker's ROS domain, for good: its graphs never share DDS with another worker's.
+    A SIGTERM stops the worker's graph (:mod:`door_bringup.interrupts`)."""
     os.environ["ROS_DOMAIN_ID"] = str(domains.get())
+    interrupt_on_sigterm()
+
+
+def _run_in_worker(options: TaskOptions, trial_dir: Path, workspace: Workspace) -> dict:
+    """:func:`run_trial` in a pool worker: interrupted, the worker exits once its graph is
+    stopped, instead of starting the next trial the pool had already queued for it."""
+    try:
+        return run_trial(options, trial_dir, workspace)
+    except KeyboardInterrupt:
+        os._exit(130)  # the pool's own loop would catch a raise and take the next trial
 
 
 def run_trial(options: TaskOptions, trial_dir: Path, workspace: Workspace) -> dict:

@@ -29,8 +29,15 @@ from door_robot.profile import Side
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import UP, DoorModel, rotation_vector
 from door_trajopt.ik import IkOptions, solve_ik, solve_ik_multistart
-from door_trajopt.problem import (Constraint, ConstraintKind, JointLimits, PostureCost, SmoothnessSpec,
-                                  TrajectoryProblem, TrajoptError)
+from door_trajopt.problem import (
+    Constraint,
+    ConstraintKind,
+    JointLimits,
+    PostureCost,
+    SmoothnessSpec,
+    TrajectoryProblem,
+    TrajoptError,
+)
 from door_trajopt.waypoint_constraints import WaypointFunction, WaypointValue, fixed_dof, waypoint_constraint
 
 FULL_MASK = np.ones(6)
@@ -360,9 +367,10 @@ def _turn(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -
     n = options.waypoints
     theta, phi = setup.start_door
     path = np.column_stack([np.full(n, theta), np.linspace(phi, options.handle_turn, n)])
-    extra = lambda m, n: [fixed_dof("handle_turned", setup.chain.size + 1, {n - 1: options.handle_turn}, m, n),
-                          waypoint_constraint("wall_clearance", ConstraintKind.INEQUALITY,
-                                              _elbow_clearance(setup, options), 1, range(1, n), m, n)]
+    def extra(m: int, n: int) -> list[Constraint]:
+        return [fixed_dof("handle_turned", setup.chain.size + 1, {n - 1: options.handle_turn}, m, n),
+                waypoint_constraint("wall_clearance", ConstraintKind.INEQUALITY,
+                                    _elbow_clearance(setup, options), 1, range(1, n), m, n)]
     return _closed_chain(setup, start_chain, options, path, (False, True), extra)
 
 
