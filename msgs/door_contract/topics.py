@@ -117,6 +117,9 @@ class Topics:
     DETECTION_DEBUG_IMAGE = TopicSpec("/door_detector/debug_image", "sensor_msgs/msg/Image",
                                       SENSOR, "door_detector", "colour image with overlays",
                                       frame=Frame.HEAD_CAMERA_OPTICAL.value)
+    HEAD_LOOK = TopicSpec("/door_detector/look", "trajectory_msgs/msg/JointTrajectory", EVENTS,
+                          "door_detector", "where the head search wants the neck while no door is "
+                          "confirmed (the FSM executes it only while DETECT_DOOR waits)", unit="rad, s")
     SCRIBBLE = TopicSpec("/operator/scribble", "geometry_msgs/msg/PolygonStamped", EVENTS,
                          "operator", "pixel polygon on the handle: operator-aided detection",
                          unit="px")

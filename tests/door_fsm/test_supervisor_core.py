@@ -124,3 +124,23 @@ def test_a_door_whose_grasp_hand_the_robot_lacks_says_so() -> None:
     assert hand is Side.RIGHT and problem == "one_armed has no right hand (its profile's arms: left)"
     assert one_armed.grasp_services() == {Side.LEFT: GRASP_SERVICES[Side.LEFT]}
     assert _started(SupervisedRobot("talos", frozenset(Side), 1.5)).grasp_hand() == (Side.RIGHT, "")
+
+
+def test_the_head_search_moves_the_neck_only_while_detect_door_waits() -> None:
+    """door_detection.head_search asks; the supervisor sends a look only in DETECT_DOOR's
+    planning phase: not once paused (the operator can always stop the robot), not later."""
+    from trajectory_msgs.msg import JointTrajectory
+
+    from door_fsm import events as ev
+    from door_fsm.operator_commands import OperatorCommand, OperatorWord
+
+    robot = SupervisedRobot.of(load_profile("talos"))
+    supervisor = _started(robot)
+    look = JointTrajectory(joint_names=["head_2_joint"])
+    assert supervisor.look(look) == [act.Look(look)]
+    paused = _started(robot)
+    paused.handle(ev.OperatorSaid(OperatorWord(OperatorCommand.PAUSE)), t(0.5))
+    paused.settle()
+    assert paused.look(look) == []
+    _walk_request(supervisor)  # the door is confirmed: WALK_TO_DOOR
+    assert supervisor.look(look) == []

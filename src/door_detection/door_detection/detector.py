@@ -15,6 +15,7 @@ are in the contract's optical frame, which the robot's TF tree hangs below the p
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -22,6 +23,7 @@ import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
 from door_contract.frames import Frame
+from door_contract.parameters import require_ordered
 from door_contract.payloads import DoorEstimate
 from door_detection.automatic import detect_automatic
 from door_detection.estimate import DetectedDoor, DetectionResult
@@ -94,6 +96,10 @@ class FrameReport:
     values: dict[str, object] = field(default_factory=dict)
 
 
+VOTE_PARAMETERS = ("vote_frames", "vote_min_agreeing", "vote_handle_confidence", "vote_normal_confidence_deg")
+"""Node parameters that are the sequential vote's DetectionOptions fields of the same name."""
+
+
 class DoorDetector:
     """The detector's state between frames: the vote, the operator's scribble, the counters."""
 
@@ -105,6 +111,16 @@ class DoorDetector:
         self.scribble: tuple[float, np.ndarray] | None = None  # (wall time, N×2 pixels)
         self.image_size: tuple[int, int] | None = None  # (width, height) of the last CameraInfo
         self.frames = self.rejected = self.incomplete = 0
+
+    @classmethod
+    def from_parameters(cls, p: Mapping[str, Any], camera: DetectorCamera) -> DoorDetector:
+        """The detector of the node's parameters (:mod:`door_detection.parameters`); a width range
+        the wrong way round is a ParameterRangeError, options out of range a DetectionError."""
+        require_ordered(p, "door_width_min", "door_width_max")
+        options = DetectionOptions(door_width_min=p["door_width_min"], door_width_max=p["door_width_max"],
+                                   **{name: p[name] for name in VOTE_PARAMETERS})
+        nominal = NominalDoor(p["nominal_door_width"], p["nominal_door_height"], p["grasp_to_free_edge"])
+        return cls(options, camera, nominal, p["scribble_timeout"])
 
     def counters(self) -> dict[str, object]:
         return {"frames": self.frames, "rejected": self.rejected}

@@ -8,7 +8,9 @@ says what to publish: ``/door/estimate``, ``/door/handle_pose``, markers and the
 (:mod:`door_detection.overlay`). The camera is the ``robot_profile``'s head camera. Bad frames
 (empty, wrong encoding, size mismatch, no valid depth, inconsistent CameraInfo, another camera's
 frame) are logged and counted; nothing is published. A frame that never completes is reported
-on /diagnostics with the stream it lacked; a bad scribble is refused at once.
+on /diagnostics with the stream it lacked; a bad scribble is refused at once. While no door is
+confirmed it asks on ``/door_detector/look`` to pan and tilt the head (:mod:`door_detection.head_search`,
+from ``/joint_states``); the FSM sends those moves to the robot only while DETECT_DOOR waits.
 """
 
 from __future__ import annotations
@@ -20,13 +22,14 @@ from typing import Any
 import numpy as np
 from geometry_msgs.msg import PolygonStamped, PoseStamped
 from rclpy.node import Node
-from sensor_msgs.msg import CameraInfo, Image
+from sensor_msgs.msg import CameraInfo, Image, JointState
 from std_msgs.msg import String
 
-from door_contract.converters.camera_info import camera_info_to_intrinsics, check_matches_image
 from door_contract.converters.diagnostics import Health
-from door_contract.converters.image import array_to_image, depth_to_metres, image_to_array
-from door_contract.converters.pose import matrix_to_pose_stamped, pose_to_matrix
+from door_contract.converters.image import array_to_image
+from door_contract.converters.joint_state import joint_state_to_positions
+from door_contract.converters.pose import matrix_to_pose_stamped
+from door_contract.converters.trajectory import joint_path_to_msg
 from door_contract.errors import ContractError
 from door_contract.frames import Frame
 from door_contract.node_support import (
@@ -37,23 +40,20 @@ from door_contract.node_support import (
     declare_parameters,
     node_main,
 )
-from door_contract.parameters import require_ordered
 from door_contract.payloads import encode
 from door_contract.stamps import from_time_msg
 from door_contract.topics import Topics, TopicSpec
-from door_detection.detector import CameraFrame, DetectorCamera, DoorDetector, FrameReport
+from door_detection.detector import DetectorCamera, DoorDetector, FrameReport
 from door_detection.errors import DetectionError
+from door_detection.frame_messages import decode_frame
 from door_detection.frame_sync import STREAMS, FrameSync
+from door_detection.head_search import head_search_of
 from door_detection.markers import door_markers
-from door_detection.options import DetectionOptions
 from door_detection.overlay import draw_estimate
 from door_detection.parameters import DETECTOR_PARAMETERS, NODE_NAME
-from door_detection.payload import NominalDoor
 from door_robot.errors import RobotModelError
+from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
-
-VOTE_PARAMETERS = ("vote_frames", "vote_min_agreeing", "vote_handle_confidence", "vote_normal_confidence_deg")
-"""Node parameters that are the sequential vote's DetectionOptions fields of the same name."""
 
 
 class DoorDetectorNode(Node):
@@ -61,13 +61,12 @@ class DoorDetectorNode(Node):
         super().__init__(NODE_NAME)
         p = self.parameters = declare_parameters(self, DETECTOR_PARAMETERS)
         with as_parameter_error(f"parameter 'robot_profile' = {p['robot_profile']!r}", RobotModelError):
-            camera = DetectorCamera.of(load_profile(p["robot_profile"]))
-        require_ordered(p, "door_width_min", "door_width_max")
+            profile = load_profile(p["robot_profile"])
+            camera = DetectorCamera.of(profile)
+            self.search = head_search_of(RobotKinematics(profile), p["head_search_max_pan"]) if p["head_search"] else None
+        self.joints: dict[str, float] | None = None  # the robot's, for the head search
         with as_parameter_error("detection options", DetectionError):
-            options = DetectionOptions(door_width_min=p["door_width_min"], door_width_max=p["door_width_max"],
-                                       **{name: p[name] for name in VOTE_PARAMETERS})
-        nominal = NominalDoor(p["nominal_door_width"], p["nominal_door_height"], p["grasp_to_free_edge"])
-        self.detector = DoorDetector(options, camera, nominal, p["scribble_timeout"])
+            self.detector = DoorDetector.from_parameters(p, camera)
         self.sync = FrameSync(p["sync_tolerance"])  # the streams matched into frames by stamp
         self.heartbeat = Heartbeat(self)
         self.heartbeat.update(Health.OK, "ready", camera=camera.camera_link)
@@ -76,13 +75,22 @@ class DoorDetectorNode(Node):
             return create_contract_publisher(self, topic)
         self.estimate_pub, self.handle_pub = pub(Topics.DOOR_ESTIMATE), pub(Topics.HANDLE_POSE)
         self.marker_pub, self.debug_pub = pub(Topics.DOOR_MARKERS), pub(Topics.DETECTION_DEBUG_IMAGE)
+        self.look_pub = pub(Topics.HEAD_LOOK)
+        create_contract_subscription(self, Topics.JOINT_STATES, self._on_joint_states)
         for stream, topic in zip(STREAMS, (Topics.COLOR_IMAGE, Topics.DEPTH_IMAGE, Topics.COLOR_INFO,
                                            Topics.CAMERA_POSE)):
             create_contract_subscription(self, topic, partial(self._on_stream, stream))
         create_contract_subscription(self, Topics.SCRIBBLE, self._on_scribble)
         self.get_logger().info(f"ready: {camera.robot}'s camera {camera.camera_link}, voting over "
                                f"{p['vote_frames']} frames (confirmed from {p['vote_min_agreeing']} agreeing), "
-                               f"doors {p['door_width_min']:.2f}–{p['door_width_max']:.2f} m")
+                               f"doors {p['door_width_min']:.2f}–{p['door_width_max']:.2f} m, head search "
+                               f"{'on' if self.search else 'off'}")
+
+    def _on_joint_states(self, msg: JointState) -> None:
+        try:
+            self.joints = joint_state_to_positions(msg)
+        except ContractError:
+            self.joints = None  # the sim bridge's own node reports it; the search waits for good ones
 
     def _on_scribble(self, msg: PolygonStamped) -> None:
         pixels = np.array([[p.x, p.y] for p in msg.polygon.points], dtype=float).reshape(-1, 2)
@@ -109,7 +117,7 @@ class DoorDetectorNode(Node):
 
     def _process(self, stamp: float, parts: dict[str, Any]) -> None:
         try:
-            frame = self._decode(stamp, parts)
+            frame = decode_frame(self.detector.camera, stamp, parts)
         except ContractError as error:
             self._report(self.detector.reject_input(stamp, str(error)))
             return
@@ -122,20 +130,10 @@ class DoorDetectorNode(Node):
             self.estimate_pub.publish(String(data=encode(report.confirmed)))
             self.handle_pub.publish(matrix_to_pose_stamped(report.handle_pose, Frame.ODOM.value, stamp))
             self.marker_pub.publish(door_markers(report.confirmed))
-
-    def _decode(self, stamp: float, parts: dict[str, Any]) -> CameraFrame:
-        """The frame's messages as arrays (:class:`ContractError` saying what is wrong with them)."""
-        problem = self.detector.camera.frame_problem(
-            {stream: parts[stream].header.frame_id for stream in ("color", "depth", "info")},
-            parts["pose"].header.frame_id)
-        if problem:
-            raise ContractError(problem)
-        rgb = image_to_array(parts["color"])
-        if parts["color"].encoding != "rgb8":
-            raise ContractError(f"colour must be rgb8, got {parts['color'].encoding!r}")
-        intrinsics = camera_info_to_intrinsics(parts["info"])
-        check_matches_image(intrinsics, rgb.shape[1], rgb.shape[0])
-        return CameraFrame(stamp, rgb, depth_to_metres(parts["depth"]), intrinsics, pose_to_matrix(parts["pose"].pose))
+        if self.search and (look := self.search.after_frame(self.joints, report.seen is not None,
+                                                            report.confirmed is not None)):
+            self.look_pub.publish(joint_path_to_msg(look.as_path()))  # the FSM sends it while DETECT_DOOR waits
+            self.get_logger().info(f"no door confirmed: {look}", throttle_duration_sec=2.0)
 
     def _report(self, report: FrameReport) -> None:
         """Log a frame's ``report`` (at most every 2 s per severity) and put it on the heartbeat."""

@@ -27,4 +27,8 @@ DETECTOR_PARAMETERS = (
                   minimum=0.1, maximum=600.0),
     ParameterSpec("sync_tolerance", 0.05, "largest stamp difference matched between colour, depth, "
                   "camera info and camera pose", unit="s", minimum=0.0, maximum=1.0),
+    ParameterSpec("head_search", True, "while no door is confirmed, ask to pan and tilt the head "
+                  "(/door_detector/look; door_detection.head_search)"),
+    ParameterSpec("head_search_max_pan", 1.2, "largest pan of the head search", unit="rad", minimum=0.0,
+                  maximum=3.14),
 )

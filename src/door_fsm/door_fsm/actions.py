@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
 
 from door_contract.vocabulary import Motion, PlannerKind, WalkGoal
 
@@ -58,6 +59,13 @@ class Execute:
 
 
 @dataclass(frozen=True)
+class Look:
+    """Send the detector's neck move (a JointTrajectory) to the robot: DETECT_DOOR's head search."""
+
+    trajectory: Any
+
+
+@dataclass(frozen=True)
 class AskApproval:
     request_id: int
     text: str
@@ -82,4 +90,4 @@ class Notice:
 
 
 Action = (RequestDetection | RequestFootsteps | RequestMotion | CancelPlanning | StopMotion | CallGrasp
-          | Execute | AskApproval | ClearApproval | AnnounceState | Notice)
+          | Execute | Look | AskApproval | ClearApproval | AnnounceState | Notice)

@@ -17,6 +17,7 @@ from rclpy.clock import Clock, ClockType
 from rclpy.node import Node
 from std_msgs.msg import String
 from std_srvs.srv import SetBool
+from trajectory_msgs.msg import JointTrajectory
 
 from door_contract.converters.diagnostics import Health
 from door_contract.converters.stop import stop_messages
@@ -60,7 +61,8 @@ class FsmSupervisorNode(Node):
             act.RequestFootsteps: self._request, act.RequestMotion: self._request,
             act.CancelPlanning: lambda a: self.pubs[PLANNER_TOPICS[a.kind].cancel].publish(
                 String(data=encode(PlanningCancel(a.request_id, a.reason)))),
-            act.CallGrasp: self._call_grasp, act.Execute: self._execute}
+            act.CallGrasp: self._call_grasp, act.Execute: self._execute,
+            act.Look: lambda a: self._send(a.trajectory, self.stamps.next(self.get_clock().now().nanoseconds))}
         self.pubs = {topic: create_contract_publisher(self, topic) for topic in (
             Topics.TASK_STATE, Topics.APPROVAL_REQUEST, Topics.TASK_REPORT, Topics.FOOTSTEP_PLAN, Topics.ARM_TRAJECTORY,
             *(t for topics in PLANNER_TOPICS.values() for t in (topics.request, topics.cancel)))}
@@ -83,6 +85,7 @@ class FsmSupervisorNode(Node):
         feed(Topics.DOOR_ESTIMATE, core.door_estimate)
         feed(Topics.EXECUTION_OUTCOME, core.execution_outcome)
         feed(Topics.OPERATOR, self._operator)
+        create_contract_subscription(self, Topics.HEAD_LOOK, lambda msg: self._run(core.look(msg)))
 
     def _now(self) -> Instant:
         return Instant(self.steady.now().nanoseconds * 1e-9, self.get_clock().now().nanoseconds * 1e-9)
@@ -145,6 +148,10 @@ class FsmSupervisorNode(Node):
         message = self.core.take(action.request_id, stamp)
         if message is None:
             return self._feed(ev.ExecutionFinished(action.request_id, False, "the approved proposal is gone"))
+        self._send(message, stamp)
+
+    def _send(self, message: Path | JointTrajectory, stamp: int) -> None:
+        """To the robot, stamped (the id its outcome answers; a head search's look matches no request)."""
         message.header.stamp = time_msg_of_ns(stamp)
         self.pubs[Topics.FOOTSTEP_PLAN if isinstance(message, Path) else Topics.ARM_TRAJECTORY].publish(message)
 

@@ -42,6 +42,7 @@ from door_fsm.graph_watch import GraphStep, GraphWatch
 from door_fsm.machine import DoorTaskMachine, MachineOptions
 from door_fsm.operator_commands import AutonomyLevel, UnknownCommandError, parse_command
 from door_fsm.records import Instant
+from door_fsm.states import Phase, TaskState
 from door_fsm.summaries import door_summary, task_report, work_of
 from door_robot.profile import RobotProfile
 
@@ -103,6 +104,13 @@ class Supervisor:
         request, self._detection_request = self._detection_request, None
         self.door.approved = estimate
         return self.handle(ev.ProposalReady(request, door_summary(estimate)), now)
+
+    def look(self, trajectory: Any) -> list[act.Action]:
+        """The detector's neck move (``/door_detector/look``): sent to the robot only while
+        DETECT_DOOR waits for an estimate (not paused, stopped or in any other state)."""
+        waiting = (self.machine.state is TaskState.DETECT_DOOR and self.machine.phase is Phase.PLANNING
+                   and self._detection_request == self.machine.request_id)
+        return [act.Look(trajectory)] if waiting else []
 
     def proposal(self, kind: PlannerKind, message: Any, now: Instant) -> list[act.Action]:
         """A planner's proposal message (a Path or JointTrajectory), known by its stamp."""
