@@ -12,15 +12,12 @@ from collections.abc import Callable
 from functools import partial
 from typing import Any
 
-from nav_msgs.msg import Path
 from rclpy.clock import Clock, ClockType
 from rclpy.node import Node
 from std_msgs.msg import String
 from std_srvs.srv import SetBool
-from trajectory_msgs.msg import JointTrajectory
 
 from door_contract.converters.diagnostics import Health
-from door_contract.converters.stop import stop_messages
 from door_contract.node_support import (
     Heartbeat,
     as_parameter_error,
@@ -30,13 +27,13 @@ from door_contract.node_support import (
     node_main,
 )
 from door_contract.payloads import PlanningCancel, encode
-from door_contract.stamps import UniqueStamps, time_msg_of_ns
 from door_contract.topics import PLANNER_TOPICS, Topics, TopicSpec
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.machine import MachineOptionsError
 from door_fsm.parameters import NODE_NAME, SUPERVISOR_PARAMETERS
 from door_fsm.records import Instant
+from door_fsm.robot_commands import RobotCommands
 from door_fsm.supervisor import SupervisedRobot, Supervisor
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
@@ -50,11 +47,11 @@ class FsmSupervisorNode(Node):
         p = self.parameters = declare_parameters(self, SUPERVISOR_PARAMETERS)
         with as_parameter_error(f"parameter 'robot_profile' = {p['robot_profile']!r}", RobotModelError):
             robot = SupervisedRobot.of(load_profile(p["robot_profile"]))
-        self.stamps, self.steady = UniqueStamps(), Clock(clock_type=ClockType.STEADY_TIME)
+        self.steady = Clock(clock_type=ClockType.STEADY_TIME)
         with as_parameter_error("fsm_supervisor timeouts", MachineOptionsError):
             self.core = Supervisor.from_parameters(p, robot, self._now().wall)
         self.heartbeat = Heartbeat(self, period_s=HEARTBEAT_PERIOD_S)
-        self._handlers: dict[type, Callable[[Any], None]] = {
+        self._handlers: dict[type, Callable[[Any], object]] = {
             act.AnnounceState: self._announce, act.AskApproval: self._ask, act.StopMotion: self._stop,
             act.ClearApproval: lambda a: self.pubs[Topics.APPROVAL_REQUEST].publish(String(data="")),
             act.Notice: lambda a: self.get_logger().warning(a.text),
@@ -62,10 +59,11 @@ class FsmSupervisorNode(Node):
             act.CancelPlanning: lambda a: self.pubs[PLANNER_TOPICS[a.kind].cancel].publish(
                 String(data=encode(PlanningCancel(a.request_id, a.reason)))),
             act.CallGrasp: self._call_grasp, act.Execute: self._execute,
-            act.Look: lambda a: self._send(a.trajectory, self.stamps.next(self.get_clock().now().nanoseconds))}
+            act.Look: lambda a: self.commands.send(a.trajectory)}  # the head search's: no outcome awaited
         self.pubs = {topic: create_contract_publisher(self, topic) for topic in (
-            Topics.TASK_STATE, Topics.APPROVAL_REQUEST, Topics.TASK_REPORT, Topics.FOOTSTEP_PLAN, Topics.ARM_TRAJECTORY,
+            Topics.TASK_STATE, Topics.APPROVAL_REQUEST, Topics.TASK_REPORT,
             *(t for topics in PLANNER_TOPICS.values() for t in (topics.request, topics.cancel)))}
+        self.commands = RobotCommands(self)
         self._subscribe()
         self.grasp_clients = {side: self.create_client(spec.srv_class(), spec.name, qos_profile=spec.qos.to_profile())
                               for side, spec in robot.grasp_services().items()}
@@ -129,10 +127,7 @@ class FsmSupervisorNode(Node):
         self.pubs[PLANNER_TOPICS[kind].request].publish(String(data=encode(request)))
 
     def _stop(self, action: act.StopMotion) -> None:
-        """ros2_control's stop: an empty trajectory holds the arm; an empty path ends the walk."""
-        trajectory, path = stop_messages(time_msg_of_ns(self.stamps.next(self.get_clock().now().nanoseconds)))
-        self.pubs[Topics.ARM_TRAJECTORY].publish(trajectory)
-        self.pubs[Topics.FOOTSTEP_PLAN].publish(path)
+        self.commands.stop()
         self.get_logger().warning(f"stopping all motion: {action.reason}")
 
     def _call_grasp(self, action: act.CallGrasp) -> None:
@@ -144,16 +139,11 @@ class FsmSupervisorNode(Node):
         future.add_done_callback(lambda f, rid=action.request_id: self._feed(ev.GraspAnswered.of_response(rid, f.result())))
 
     def _execute(self, action: act.Execute) -> None:
-        stamp = self.stamps.next(self.get_clock().now().nanoseconds)
+        stamp = self.commands.next_stamp()
         message = self.core.take(action.request_id, stamp)
         if message is None:
             return self._feed(ev.ExecutionFinished(action.request_id, False, "the approved proposal is gone"))
-        self._send(message, stamp)
-
-    def _send(self, message: Path | JointTrajectory, stamp: int) -> None:
-        """To the robot, stamped (the id its outcome answers; a head search's look matches no request)."""
-        message.header.stamp = time_msg_of_ns(stamp)
-        self.pubs[Topics.FOOTSTEP_PLAN if isinstance(message, Path) else Topics.ARM_TRAJECTORY].publish(message)
+        self.commands.send(message, stamp)
 
 
 main = node_main(FsmSupervisorNode, __name__)

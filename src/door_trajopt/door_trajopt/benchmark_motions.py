@@ -38,7 +38,8 @@ from door_trajopt.motions import MotionSetup, start_door_for, support_polygon
 # [Banerjee 2015] Sec. V: 10.1 s per plan for the pull door, 15.5 s for the push door (one guess)
 PUSH_SEQUENCE = {Motion.APPROACH_HANDLE: 10.1, Motion.TURN_HANDLE: 10.1, Motion.PUSH_DOOR: 15.5}
 PULL_SEQUENCE = {Motion.APPROACH_HANDLE: 10.1, Motion.TURN_HANDLE: 10.1, Motion.PULL_DOOR: 10.1,
-                 Motion.BLOCK_DOOR: 10.1, Motion.READY_TO_WALK: 10.1}
+                 Motion.BLOCK_DOOR: 10.1, Motion.READY_TO_WALK: 10.1, Motion.TUCK_ARM: 10.1}
+"""The tuck is not the paper's (its pull passage kept the arm on the leaf): its 10.1 s is the per-plan figure."""
 TARGET_SECONDS = 0.1
 GUESS_TARGET_SECONDS = 0.02
 DOOR_WIDTH = 0.914
