@@ -67,8 +67,10 @@ def test_falls_are_counted_per_phase_from_the_attempts_outcome():
     said_fell = _report("pull", False, 1.0, 0.5)  # a reason that mentions a fall is not a fall
     said_fell["failure_reason"] = "WALK_TO_DOOR: the robot fell? no: planning failed"
     reports = [fell, fell_opening, _fell_in("WALK_THROUGH"), said_fell, _report("push", True, 1.0, 0.5)]
-    assert falls_line(reports) == "Falls: 3/5 runs (OPEN_DOOR 1, WALK_THROUGH 2)"
+    assert falls_line(reports) == "Falls: 3/5 runs (OPEN_DOOR 1 (PUSH 1), WALK_THROUGH 2)"
     assert falls_line([_report("push", True, 1.0, 0.5)]) == "Falls: 0/1 runs (none)"
+    pull = [_fell_in("WALK_THROUGH/TO_DOORWAY"), _fell_in("WALK_THROUGH/TO_DOORWAY"), _fell_in("WALK_THROUGH")]
+    assert falls_line(pull) == "Falls: 3/3 runs (WALK_THROUGH 3 (TO_DOORWAY 2, WALK_THROUGH 1))"
     assert "Falls: 3/5" in summary(reports)
 
 

@@ -77,12 +77,15 @@ def test_push_door_is_detected_approached_and_opened(push_run):
 
 
 def test_nothing_moves_after_the_walk_through_ends(push_run):
-    """Whatever the walk's outcome (a fall included), no command follows it."""
-    run_dir, _ = push_run
+    """Whatever the walk's outcome (a fall included), no command follows the task's end (its
+    terminal state on /door_task/state: the FSM turns FAILED the moment the fall is reported;
+    the recorder once missed that ExecutionOutcome itself, so the state is the reference)."""
+    run_dir, report = push_run
     bag = run_dir / "bag"
-    outcomes = list(read_messages(bag, [Topics.EXECUTION_OUTCOME.name]))
-    assert outcomes
-    last = outcomes[-1].timestamp_ns
+    ends = [m for m in read_messages(bag, [Topics.TASK_STATE.name])
+            if deserialize_message(m.data, Topics.TASK_STATE.msg_class()).data == report["final_state"]]
+    assert ends
+    last = ends[0].timestamp_ns
     later = []  # motion commands after it (an empty trajectory or plan is a stop, not motion)
     for topic, field in ((Topics.ARM_TRAJECTORY, "points"), (Topics.FOOTSTEP_PLAN, "poses")):
         later += [m for m in read_messages(bag, [topic.name]) if m.timestamp_ns > last

@@ -217,12 +217,24 @@ def summary(reports: list[dict]) -> str:
 
 
 def falls_line(reports: list[dict]) -> str:
-    """Runs that ended with the robot fallen, per phase: the state attempt whose outcome is
-    ``fell`` (the FSM records it so when the execution reports the fall)."""
-    phases = Counter(phase_of(attempt["state"]) for r in reports for attempt in r["attempts"]
-                     if attempt["outcome"] == "fell")
-    counted = ", ".join(f"{phase} {count}" for phase, count in sorted(phases.items())) or "none"
-    return f"Falls: {sum(phases.values())}/{len(reports)} runs ({counted})"
+    """Runs that ended with the robot fallen, per phase and, where a phase has sub-states, per
+    sub-state: the state attempt whose outcome is ``fell`` (the FSM records it so when the
+    execution reports the fall)."""
+    states = Counter(attempt["state"] for r in reports for attempt in r["attempts"] if attempt["outcome"] == "fell")
+    phases = Counter[str]()
+    for state, count in states.items():
+        phases[phase_of(state)] += count
+    counted = ", ".join(f"{phase} {count}" + _sub_states(phase, states) for phase, count in sorted(phases.items()))
+    return f"Falls: {sum(phases.values())}/{len(reports)} runs ({counted or 'none'})"
+
+
+def _sub_states(phase: str, states: Counter[str]) -> str:
+    """`` (TO_DOORWAY 10, WALK_THROUGH 2)``: a phase's falls by the sub-state they were in, if it has any."""
+    within = {state.split("/", 1)[1] if "/" in state else state: n for state, n in sorted(states.items())
+              if phase_of(state) == phase}
+    if len(within) == 1 and phase in within:
+        return ""
+    return " (" + ", ".join(f"{state} {n}" for state, n in sorted(within.items())) + ")"
 
 
 def overhead_line(reports: list[dict]) -> str:

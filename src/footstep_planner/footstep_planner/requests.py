@@ -155,7 +155,10 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
     * a PULL door: the other hand blocks the leaf and the walk sweeps it open
       (:mod:`~footstep_planner.pull_passage`): only wall and posts count. ``doorway`` walks to
       where the blocking arm tucks; ``through`` walks on from there, or, from anywhere else,
-      the whole passage;
+      the whole passage. The first turn is in place where the robot stands (measured), not at
+      the planned stand pose: a walk there lands within 5 cm, and stepping back onto the planned
+      pose while turning, the blocking hand on the leaf, brought the hinge-side knee onto the
+      leaf's free edge;
     * through a PUSH door: the leaf at :func:`passage_angle` is an obstacle.
 
     A doorway narrower than the body is passed sideways
@@ -167,7 +170,7 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
         return WalkProblem(start, legs, World.from_door(door), door)
     if door.opening is DoorOpening.PULL:
         held = settings.pull_passage_shift if settings.pull_passage is PullPassage.SIDEWAYS else None
-        legs = pull_passage_legs(door, stand_pose(door, options, settings), options, settings.beyond_door, held)
+        legs = pull_passage_legs(door, start.body_pose, options, settings.beyond_door, held)
         doorway = doorway_legs(door, legs, settings.tuck_at)
         if goal is WalkGoal.DOORWAY:
             legs = doorway
