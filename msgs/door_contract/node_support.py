@@ -8,6 +8,7 @@ from __future__ import annotations
 import difflib
 import faulthandler
 import signal
+import time
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from typing import Any, Protocol
@@ -120,9 +121,12 @@ class StopRequest:
 
 
 def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
-             poll_period_s: float = 0.1) -> int:
+             poll_period_s: float = 0.1, drain_s: float = 0.0) -> int:
     """The canonical rclpy main: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
 
+    ``drain_s``: after the stop is asked for, go on taking what is already queued for this
+    long before shutting down (a recorder stopped right after the graph it records still has
+    the graph's last messages queued: a fall's outcome and the FAILED state were lost so).
     Returns the process exit code: 0 after a clean shutdown, 2 when a parameter is invalid.
     DDS discovery stays on this machine unless the environment says otherwise
     (:func:`~door_contract.network.keep_discovery_local`).
@@ -140,6 +144,7 @@ def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
         while not stop.requested and rclpy.ok():
             executor.spin_once(timeout_sec=poll_period_s)
         node.get_logger().info(f"{stop.signal_name or 'context shut down'}: stopping")
+        _drain(executor, drain_s)
     except ParameterRangeError as error:
         rclpy.logging.get_logger("door_task").fatal(str(error))
         return 2
@@ -156,6 +161,13 @@ def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
         for sig, handler in previous.items():
             signal.signal(sig, handler)
     return 0
+
+
+def _drain(executor: SingleThreadedExecutor, drain_s: float) -> None:
+    """Run ready callbacks for ``drain_s`` (wall clock) while the context is still up."""
+    deadline = time.monotonic() + drain_s
+    while rclpy.ok() and time.monotonic() < deadline:
+        executor.spin_once(timeout_sec=min(0.05, max(deadline - time.monotonic(), 0.0)))
 
 
 class NodeMain(Protocol):

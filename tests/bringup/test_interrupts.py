@@ -1,5 +1,8 @@
-"""A SIGTERM stops the main job as Ctrl-C does: its graph's node processes (each in a session
-of its own, out of the terminal's reach) are stopped, none is left running."""
+"""A SIGTERM stops the Monte-Carlo (and the main job) as Ctrl-C does: the graphs' node processes
+(each in a session of its own, out of the terminal's reach) and the pool's workers are stopped,
+none is left running. The processes watched are the job's own descendants, taken while it runs
+(other tests' nodes share the ROS domain). The main job alone was already safe once rclpy.init
+had installed rclpy's SIGTERM handler; the Monte-Carlo's main never calls it."""
 
 import os
 import signal
@@ -24,18 +27,47 @@ def test_a_sigterm_raises_keyboard_interrupt_in_the_main_thread():
         signal.signal(signal.SIGTERM, previous)
 
 
-def _graph_processes(domain: str) -> list[int]:
-    """Node processes of the workspace's install in ROS domain ``domain``."""
-    found = []
+def _children(parent: int) -> set[int]:
+    """The processes whose parent is ``parent`` (the graph's nodes are the main job's children)."""
+    found = set()
     for entry in Path("/proc").iterdir():
         try:
-            command = (entry / "cmdline").read_bytes()
-            environment = (entry / "environ").read_bytes().split(b"\0")
+            stat = (entry / "stat").read_text()
         except (OSError, ValueError):
             continue
-        if b"ros_ws/install" in command and f"ROS_DOMAIN_ID={domain}".encode() in environment:
-            found.append(int(entry.name))
+        if int(stat.rsplit(")", 1)[1].split()[1]) == parent:
+            found.add(int(entry.name))
     return found
+
+
+def _descendants(root: int) -> set[int]:
+    """Every process below ``root`` (children, their children, ...)."""
+    found, frontier = set(), {root}
+    while frontier:
+        frontier = set().union(*(_children(pid) for pid in frontier)) - found
+        found |= frontier
+    return found
+
+
+def _is_node(pid: int) -> bool:
+    """Whether ``pid`` runs one of the workspace's installed executables (a node)."""
+    try:
+        return b"ros_ws/install" in Path(f"/proc/{pid}/cmdline").read_bytes()
+    except OSError:
+        return False
+
+
+def _started(root: int, graph: set[int], nodes: int) -> bool:
+    """Whether ``nodes`` node processes run below ``root`` now (every descendant seen is kept in
+    ``graph``)."""
+    below = _descendants(root)
+    graph.update(below)
+    return sum(1 for pid in _alive(below) if _is_node(pid)) >= nodes
+
+
+def _alive(pids: set[int]) -> set[int]:
+    return {pid for pid in pids if Path(f"/proc/{pid}").exists()
+            and Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"}
 
 
 def _until(condition, deadline_s: float) -> bool:
@@ -49,16 +81,21 @@ def _until(condition, deadline_s: float) -> bool:
 
 @pytest.mark.slow
 @pytest.mark.ros
-def test_a_sigterm_to_the_main_job_stops_its_whole_graph(workspace, tmp_path):
-    domain = os.environ["ROS_DOMAIN_ID"]
-    job = subprocess.Popen([sys.executable, "-m", "door_bringup.door_task", "--no-bag", "--run-dir", str(tmp_path)],
-                           env=workspace.environment(), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+def test_a_sigterm_to_the_monte_carlo_stops_every_graph_and_worker(workspace):
+    """Two trials at once (two pool workers, each with a graph of 6 node processes): a SIGTERM
+    to the Monte-Carlo leaves nothing running. Before, it left the 12 nodes and both workers,
+    which went on starting trials."""
+    job = subprocess.Popen([sys.executable, "-m", "door_bringup.monte_carlo", "--trials", "2", "--jobs", "2",
+                            "--seed", "11"], env=workspace.environment(), stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL)
+    below: set[int] = set()
     try:
-        assert _until(lambda: len(_graph_processes(domain)) >= 5, 120.0), "the graph did not start"
+        assert _until(lambda: _started(job.pid, below, 10), 180.0), "the two graphs did not start"
+        assert job.poll() is None
         job.send_signal(signal.SIGTERM)
         assert job.wait(timeout=90) != 0
-        assert _until(lambda: not _graph_processes(domain), 30.0), _graph_processes(domain)
+        assert _until(lambda: not _alive(below), 60.0), _alive(below)  # no node or worker orphaned
     finally:
         job.kill()
-        for pid in _graph_processes(domain):
+        for pid in _alive(below):
             os.kill(pid, signal.SIGKILL)

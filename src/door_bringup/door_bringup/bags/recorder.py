@@ -6,7 +6,8 @@
 Subscribes with raw (serialized) callbacks, so messages are stored byte-identical; new
 topics are picked up while recording as soon as a publisher offers them (as ``ros2 bag record``
 does), each with the QoS its publishers offer (stored in the bag, so a player restores
-transient-local topics; :mod:`door_bringup.bags.qos`). Ctrl-C / SIGTERM closes the bag
+transient-local topics; :mod:`door_bringup.bags.qos`). Ctrl-C / SIGTERM writes what is still queued
+(:data:`DRAIN_S`) and closes the bag
 cleanly. An output that exists or cannot be created ends with one line and exit code 7
 (:mod:`door_bringup.bags.exit_codes`); ``--compression zstd`` without ``--storage mcap`` is a
 usage error (2).
@@ -30,6 +31,10 @@ from door_contract.converters.diagnostics import Health
 from door_contract.node_support import Heartbeat, run_node
 from door_contract.qos import matching_subscription
 from door_contract.topics import interface_class
+
+DRAIN_S = 2.0
+"""s the recorder goes on writing what is queued after Ctrl-C / SIGTERM: it is stopped right after
+the graph, whose last messages (a fall's outcome, the FAILED state) were still queued and lost."""
 
 
 class BagRecorder(Node):
@@ -90,7 +95,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"bag_record: {error}", file=sys.stderr)
         return exit_code_for(error)
     return run_node(lambda: BagRecorder(writer, args.output, StorageFormat(args.storage),
-                                        tuple(args.topics) if args.topics else None), ros_args)
+                                        tuple(args.topics) if args.topics else None), ros_args, drain_s=DRAIN_S)
 
 
 if __name__ == "__main__":
