@@ -15,7 +15,8 @@ from __future__ import annotations
 
 from enum import StrEnum
 
-__all__ = ["Backend", "DetectionMode", "DoorOpening", "Foot", "HingeSide", "Motion", "PlannerKind", "Side", "WalkGoal", "grasp_hand"]
+__all__ = ["Backend", "DetectionMode", "DoorOpening", "Foot", "HingeSide", "Motion", "PlannerKind", "Side",
+           "WalkGoal", "grasp_hand"]
 
 
 class DoorOpening(StrEnum):

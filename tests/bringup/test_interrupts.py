@@ -27,17 +27,18 @@ def test_a_sigterm_raises_keyboard_interrupt_in_the_main_thread():
         signal.signal(signal.SIGTERM, previous)
 
 
+def _stat(pid: int) -> list[str]:
+    """The fields of ``/proc/<pid>/stat`` after the command name (state, parent pid, ...); [] when gone."""
+    try:
+        return Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()
+    except (OSError, IndexError):
+        return []
+
+
 def _children(parent: int) -> set[int]:
     """The processes whose parent is ``parent`` (the graph's nodes are the main job's children)."""
-    found = set()
-    for entry in Path("/proc").iterdir():
-        try:
-            stat = (entry / "stat").read_text()
-        except (OSError, ValueError):
-            continue
-        if int(stat.rsplit(")", 1)[1].split()[1]) == parent:
-            found.add(int(entry.name))
-    return found
+    return {int(entry.name) for entry in Path("/proc").iterdir()
+            if entry.name.isdigit() and (fields := _stat(int(entry.name))) and int(fields[1]) == parent}
 
 
 def _descendants(root: int) -> set[int]:
@@ -66,8 +67,7 @@ def _started(root: int, graph: set[int], nodes: int) -> bool:
 
 
 def _alive(pids: set[int]) -> set[int]:
-    return {pid for pid in pids if Path(f"/proc/{pid}").exists()
-            and Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0] != "Z"}
+    return {pid for pid in pids if (fields := _stat(pid)) and fields[0] != "Z"}
 
 
 def _until(condition, deadline_s: float) -> bool:

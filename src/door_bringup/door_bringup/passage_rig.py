@@ -32,6 +32,9 @@ from door_contract.errors import ParameterRangeError
 from door_contract.parameters import validate_all
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
 from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeSide, Motion, Side, WalkGoal, grasp_hand
+from door_fsm.states import TaskState
+from door_fsm.wiring import WiringError, success_sequence
+from door_fsm.work import STATE_WORK
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_sim_bridge.execution import ExecutionResult, FootstepExecution, TrajectoryExecution
@@ -171,11 +174,18 @@ def run_motion(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEsti
 
 
 def passage_steps(opening: DoorOpening) -> tuple[WalkGoal | Motion, ...]:
-    """The FSM's WALK_THROUGH as walks and motions: a pull door's walk to the doorway, the
-    tuck, the walk on (:mod:`footstep_planner.pull_passage`); a push door's one walk."""
-    if opening is DoorOpening.PULL:
-        return WalkGoal.DOORWAY, Motion.TUCK_ARM, WalkGoal.THROUGH
-    return (WalkGoal.THROUGH,)
+    """The FSM's WALK_THROUGH as walks and motions, read off its wiring: a pull door's walk to
+    the doorway, the tuck, the walk on (:mod:`footstep_planner.pull_passage`); a push door's
+    one walk."""
+    passage = [state for state in success_sequence(opening)
+               if state is TaskState.WALK_THROUGH or state.is_walk_through_substate]
+    return tuple(_walk_or_motion(STATE_WORK[state].target) for state in passage)
+
+
+def _walk_or_motion(target: WalkGoal | Motion | None) -> WalkGoal | Motion:
+    if target is None:
+        raise WiringError("a WALK_THROUGH state without a walk goal or motion")
+    return target
 
 
 def walk_through(world: DoorWorld, estimate: DoorEstimate, kinematics: RobotKinematics,

@@ -94,6 +94,8 @@ class HeadSearch:
         if neck.pan is None and neck.tilt is None:
             raise DetectionError("a head search needs a neck with a pan or a tilt joint")
         self.neck, self.options = neck, options or HeadSearchOptions()
+        self._moving_neck = Neck(*(None if axis is None else replace(axis, velocity=axis.velocity * self.options.speed_scale)
+                                   for axis in (neck.pan, neck.tilt)))  # the speed limits a move uses
         self._search: ViewSearch | None = None
         self._home: View | None = None
         self._unsettled = 0
@@ -141,9 +143,7 @@ class HeadSearch:
 
     def _look(self, start: View, goal: View) -> LookCommand:
         targets = goal.joint_targets(self.neck)
-        slow = Neck(*(None if axis is None else replace(axis, velocity=axis.velocity * self.options.speed_scale)
-                      for axis in (self.neck.pan, self.neck.tilt)))
-        duration = max(head_move_time(slow, start, goal), 0.1)
+        duration = max(head_move_time(self._moving_neck, start, goal), 0.1)
         return LookCommand(tuple(targets), tuple(targets.values()), duration)
 
 

@@ -20,7 +20,7 @@ from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from door_contract.vocabulary import DoorOpening, Motion, PlannerKind, WalkGoal
+from door_contract.vocabulary import DoorOpening, Motion, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.approvals import approval_text, refusal
@@ -183,7 +183,7 @@ class DoorTaskMachine:
         if self.phase is Phase.EXECUTING:
             return [act.StopMotion(reason)]
         if self.phase is Phase.PLANNING and work.kind in (WorkKind.FOOTSTEPS, WorkKind.MOTION):
-            return [act.CancelPlanning(self._request_id, PlannerKind(work.kind.value), reason)]
+            return [act.CancelPlanning(self._request_id, work.kind.planner, reason)]
         return []
 
     def _finish(self, outcome: StateOutcome, now: Instant, reason: str = "") -> list[act.Action]:
@@ -234,7 +234,7 @@ class DoorTaskMachine:
             return self._finish(StateOutcome.SUCCEEDED, now)
         timeout = self._work_s * self.options.execution_factor + self.options.execution_margin_s
         self._begin_phase(Phase.EXECUTING, now, timeout)
-        return [act.ClearApproval(), act.Execute(self._request_id, PlannerKind(work.kind.value))]
+        return [act.ClearApproval(), act.Execute(self._request_id, work.kind.planner)]
 
     def _on_execution(self, event: ev.ExecutionFinished, now: Instant) -> list[act.Action]:
         if event.fell:

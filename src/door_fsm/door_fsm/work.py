@@ -9,7 +9,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 
-from door_contract.vocabulary import Motion, WalkGoal
+from door_contract.vocabulary import Motion, PlannerKind, WalkGoal
+from door_fsm.errors import DoorFsmError
 from door_fsm.states import StateOutcome, TaskState
 
 
@@ -18,6 +19,14 @@ class WorkKind(str, Enum):
     FOOTSTEPS = "footsteps"
     MOTION = "motion"
     GRASP = "grasp"
+
+    @property
+    def planner(self) -> PlannerKind:
+        """The planner of footstep and motion work (its requests, proposals and cancels)."""
+        planners = {WorkKind.FOOTSTEPS: PlannerKind.FOOTSTEPS, WorkKind.MOTION: PlannerKind.MOTION}
+        if self not in planners:
+            raise DoorFsmError(f"{self.value} work has no planner")
+        return planners[self]
 
 
 @dataclass(frozen=True)

@@ -433,11 +433,7 @@ def _ready(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) 
     if setup.door.push:
         return _door_stop(setup, start_chain, options)
     n, m = options.waypoints, setup.chain.size + 2
-    pinned = _shared_with_other_arm(setup.chain)
-    walking = setup.chain.chain_of(setup.chain.kinematics.walking_q)
-    end_chain = np.array([start_chain[i] if name in pinned else walking[i]
-                          for i, name in enumerate(setup.chain.joint_names)])
-    end = np.concatenate([end_chain, setup.start_door])
+    pinned, end_chain, end = _to_walking_posture(setup, start_chain)
     retreat = setup.chain.tcp_pose(start_chain)
     leaf_normal = setup.door.leaf_rotation(setup.start_door[0]) @ setup.door.normal
     retreat[:3, 3] += options.release_retreat * leaf_normal
@@ -461,15 +457,22 @@ def _tuck(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -
     cost the smoothest path is the straight line in joint space (the acceleration cost's
     minimum between fixed ends): on the passage rig the posture-weighted path left the wrist
     0.12-0.17 rad off its goal under the leaf in 5 of 10 doors, the straight one 0.07 in 3."""
-    pinned = _shared_with_other_arm(setup.chain)
-    walking = setup.chain.chain_of(setup.chain.kinematics.walking_q)
-    end_chain = np.array([start_chain[i] if name in pinned else walking[i]
-                          for i, name in enumerate(setup.chain.joint_names)])
-    end = np.concatenate([end_chain, setup.start_door])
+    pinned, end_chain, end = _to_walking_posture(setup, start_chain)
     straight = replace(options, posture_weight=0.0)  # no pull towards the nominal posture: the path stays straight
     problem = _problem(setup, start_chain, straight, (False, False), [], end=end, pinned=pinned)
     guess = _through_keys(problem, [(0, start_chain), (options.waypoints - 1, end_chain)], setup.start_door)
     return MotionProblem(problem, guess, setup.chain)
+
+
+def _to_walking_posture(setup: MotionSetup, start_chain: np.ndarray) -> tuple[tuple[str, ...], np.ndarray, np.ndarray]:
+    """Where an arm ends that goes to the walking posture while the other arm still holds or
+    blocks the door: (the pinned joints both arms share, the chain's end, the end state with
+    the door where it is). The pinned joints (the torso) stay where they start."""
+    pinned = _shared_with_other_arm(setup.chain)
+    walking = setup.chain.chain_of(setup.chain.kinematics.walking_q)
+    end_chain = np.array([start_chain[i] if name in pinned else walking[i]
+                          for i, name in enumerate(setup.chain.joint_names)])
+    return pinned, end_chain, np.concatenate([end_chain, setup.start_door])
 
 
 def minimum_duration(motion: Motion, options: MotionOptions) -> float:

@@ -25,6 +25,7 @@ import numpy as np
 from door_contract.vocabulary import DetectionMode
 from door_detection.automatic import detect_automatic
 from door_detection.estimate import DetectedDoor, DetectionOutcome, DetectionResult
+from door_detection.head_search import home_view as neck_view
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
 from door_detection.view_search import Neck, SearchStep, View, ViewSearch, ViewSearchOptions, plan_views
@@ -63,10 +64,7 @@ class SearchOutcome:
 
 def home_view(world: DoorWorld, neck: Neck) -> View:
     """The view the robot has now (its neck joints' look angles)."""
-    joints = world.joint_positions()
-    pan = neck.pan.look(joints[neck.pan.joint]) if neck.pan is not None else 0.0
-    tilt = neck.tilt.look(joints[neck.tilt.joint]) if neck.tilt is not None else 0.0
-    return View(pan, tilt, 0.0)
+    return neck_view(neck, world.joint_positions())
 
 
 def run_search(world: DoorWorld, neck: Neck, mode: DetectionMode = DetectionMode.AUTOMATIC,
