@@ -2,13 +2,13 @@
 
 import pytest
 
-from door_bringup.passage_rig import GRASP, RELEASE, PassageRun, main, opening_sequence, passage_steps
+from door_bringup.passage_rig import HandCommand, PassageRun, main, opening_sequence, passage_steps
 from door_contract.vocabulary import DoorOpening, HingeSide, Motion, WalkGoal
 
 
 def test_the_doors_are_opened_in_the_fsms_order():
-    assert opening_sequence(DoorOpening.PUSH) == (Motion.APPROACH_HANDLE, GRASP, Motion.TURN_HANDLE,
-                                                  Motion.PUSH_DOOR, RELEASE, Motion.READY_TO_WALK)
+    assert opening_sequence(DoorOpening.PUSH) == (Motion.APPROACH_HANDLE, HandCommand.GRASP, Motion.TURN_HANDLE,
+                                                  Motion.PUSH_DOOR, HandCommand.RELEASE, Motion.READY_TO_WALK)
     pull = opening_sequence(DoorOpening.PULL)
     assert pull[3:5] == (Motion.PULL_DOOR, Motion.BLOCK_DOOR)  # the other hand blocks before the release
 

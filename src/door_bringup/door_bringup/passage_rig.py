@@ -24,6 +24,7 @@ import argparse
 import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from enum import Enum
 
 import numpy as np
 
@@ -34,7 +35,7 @@ from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
 from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeSide, Motion, Side, WalkGoal, grasp_hand
 from door_fsm.states import TaskState
 from door_fsm.wiring import WiringError, success_sequence
-from door_fsm.work import STATE_WORK
+from door_fsm.work import STATE_WORK, WorkKind
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_sim_bridge.execution import ExecutionResult, FootstepExecution, TrajectoryExecution
@@ -62,7 +63,16 @@ NODE_DEFAULTS = {spec.name: spec.default for spec in PLANNER_PARAMETERS}
 """The footstep planner node's default parameters (search settings and goal settings)."""
 JITTER = np.array([0.02, 0.02, np.radians(1.0)])
 """Largest stand-pose error a trial adds: along the normal, along the wall (m), yaw (rad)."""
-GRASP, RELEASE = "grasp", "release"
+
+
+class HandCommand(str, Enum):
+    """The grasp service's two calls, as steps of the opening (the FSM's GRASP state and the
+    release READY_TO_WALK makes before it plans)."""
+
+    GRASP = "grasp"
+    RELEASE = "release"
+
+
 WALKED_THROUGH = "walk through"
 """The stage of a door whose last walk ran (to its end, or to a fall)."""
 
@@ -121,10 +131,24 @@ def motion_setup(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEs
     return MotionSetup(chain, door, estimate.width, support_polygon(chain), door_angles)
 
 
-def opening_sequence(opening: DoorOpening) -> tuple[Motion | str, ...]:
-    """The FSM's OPEN_DOOR sub-states as motions and grasp commands, in order."""
-    swing = (Motion.PUSH_DOOR,) if opening is DoorOpening.PUSH else (Motion.PULL_DOOR, Motion.BLOCK_DOOR)
-    return (Motion.APPROACH_HANDLE, GRASP, Motion.TURN_HANDLE, *swing, RELEASE, Motion.READY_TO_WALK)
+def opening_sequence(opening: DoorOpening) -> tuple[Motion | HandCommand, ...]:
+    """The FSM's OPEN_DOOR as motions and grasp calls, read off its wiring (the sub-states of
+    :func:`~door_fsm.wiring.success_sequence` and their work): approach, grasp, turn,
+    push | pull and block, release, ready to walk."""
+    steps: list[Motion | HandCommand] = []
+    for state in success_sequence(opening):
+        if not state.is_open_door_substate:
+            continue
+        work = STATE_WORK[state]
+        if work.kind is WorkKind.GRASP:
+            steps.append(HandCommand.GRASP)
+            continue
+        if work.release_first:
+            steps.append(HandCommand.RELEASE)
+        if not isinstance(work.target, Motion):
+            raise WiringError(f"{state.label} is neither a grasp nor a motion")
+        steps.append(work.target)
+    return tuple(steps)
 
 
 def run_recording(world: DoorWorld, execution: FootstepExecution | TrajectoryExecution,
@@ -145,12 +169,11 @@ def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstim
     opening = world.config.door.opening
     hand, library, door_angle = grasp_hand(estimate.hinge_side, opening), MotionLibrary(), 0.0
     for step in opening_sequence(opening):
-        if step in (GRASP, RELEASE):
-            answer = world.grasp(hand, step == GRASP)
+        if isinstance(step, HandCommand):
+            answer = world.grasp(hand, step is HandCommand.GRASP)
             if not answer.success:
-                return str(step), "failure", answer.message
+                return step.value, "failure", answer.message
             continue
-        assert isinstance(step, Motion)
         status, reason, door_angle = run_motion(world, kinematics, estimate, step, library, door_angle, peaks)
         if status != OutcomeStatus.SUCCESS.value:
             return step.value, status, reason
