@@ -17,7 +17,7 @@ from typing import Any, TypeVar, get_type_hints
 
 from door_contract.errors import ContractError, NonFiniteError
 from door_contract.json_text import parse_bounded
-from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeSide, Motion, WalkGoal
+from door_contract.vocabulary import Autonomy, Backend, DetectionMode, DoorOpening, HingeSide, Motion, TaskEnd, WalkGoal
 
 Payload = TypeVar("Payload")
 
@@ -127,10 +127,10 @@ class PlanningCancel:
 class TaskReport:
     """``/door_task/report`` (latched): how the task ended and every state attempt."""
 
-    final_state: str  # DONE | FAILED
+    final_state: TaskEnd
     failure_reason: str
     opening: DoorOpening
-    autonomy: str
+    autonomy: Autonomy
     attempts: tuple[dict, ...]  # door_fsm.records.StateRecord.as_dict(): state, attempt, outcome, times, summary
     clocks: str = ""  # which clock each time is measured on (docs/CLOCKS.md)
 

@@ -15,8 +15,8 @@ from __future__ import annotations
 
 from enum import StrEnum
 
-__all__ = ["Backend", "DetectionMode", "DoorOpening", "Foot", "HingeSide", "Motion", "PlannerKind", "Side",
-           "WalkGoal", "grasp_hand"]
+__all__ = ["Autonomy", "Backend", "DetectionMode", "DoorOpening", "Foot", "HingeSide", "Motion", "PlannerKind",
+           "Side", "TaskEnd", "WalkGoal", "grasp_hand"]
 
 
 class DoorOpening(StrEnum):
@@ -112,6 +112,24 @@ class DetectionMode(StrEnum):
     AUTOMATIC = "automatic"
     OPERATOR = "operator"
     """Operator-aided: from the operator's scribble on the handle."""
+
+
+class Autonomy(StrEnum):
+    """Which proposals wait for the operator (as FlexBE's autonomy levels; ``TaskReport.autonomy``)."""
+
+    FULL = "full"
+    """None."""
+    SUPERVISED = "supervised"
+    """The critical ones (door estimate, footstep plans, handle turn)."""
+    STEP = "step"
+    """Every proposal."""
+
+
+class TaskEnd(StrEnum):
+    """How the door task ended (``TaskReport.final_state``: the FSM's two terminal states)."""
+
+    DONE = "DONE"
+    FAILED = "FAILED"
 
 
 class PlannerKind(StrEnum):

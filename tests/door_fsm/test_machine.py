@@ -2,11 +2,11 @@
 
 import pytest
 
-from door_contract.vocabulary import DoorOpening, WalkGoal
+from door_contract.vocabulary import Autonomy, DoorOpening, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.machine import DoorTaskMachine, MachineOptions
-from door_fsm.operator_commands import AutonomyLevel, OperatorCommand, OperatorWord, UnknownCommandError, parse_command
+from door_fsm.operator_commands import OperatorCommand, OperatorWord, UnknownCommandError, parse_command
 from door_fsm.records import Instant
 from door_fsm.states import Phase, StateOutcome, TaskState
 from door_fsm.wiring import WiringError, build_wiring, success_sequence, validate_wiring
@@ -93,9 +93,9 @@ def test_a_pull_door_walks_to_the_doorway_tucks_the_arm_and_walks_on():
 
 
 @pytest.mark.parametrize("autonomy, expected", [
-    (AutonomyLevel.FULL, 0),
-    (AutonomyLevel.SUPERVISED, 4),  # door estimate, stand footsteps, handle turn, passage footsteps
-    (AutonomyLevel.STEP, 7),        # every proposal of a push door (the grasp call has none)
+    (Autonomy.FULL, 0),
+    (Autonomy.SUPERVISED, 4),  # door estimate, stand footsteps, handle turn, passage footsteps
+    (Autonomy.STEP, 7),        # every proposal of a push door (the grasp call has none)
 ])
 def test_autonomy_levels_decide_which_proposals_wait(autonomy, expected):
     machine = DoorTaskMachine(MachineOptions(opening=DoorOpening.PUSH, autonomy=autonomy))
@@ -183,7 +183,7 @@ def _advance_to(machine, state):
 
 
 def test_slip_goes_back_to_move_to_handle_then_fails_after_limit():
-    machine = DoorTaskMachine(MachineOptions(max_repeats=1, autonomy=AutonomyLevel.FULL))
+    machine = DoorTaskMachine(MachineOptions(max_repeats=1, autonomy=Autonomy.FULL))
     _advance_to(machine, TaskState.TURN_HANDLE)
     machine.handle(ev.HandSlipped("constraint force 412 N > 300 N"), t(50.0))
     assert machine.state is TaskState.MOVE_TO_HANDLE
@@ -197,7 +197,7 @@ def test_slip_goes_back_to_move_to_handle_then_fails_after_limit():
 
 
 def test_failed_grasp_re_approaches_the_handle():
-    machine = DoorTaskMachine(MachineOptions(autonomy=AutonomyLevel.FULL))
+    machine = DoorTaskMachine(MachineOptions(autonomy=Autonomy.FULL))
     _advance_to(machine, TaskState.GRASP)
     machine.handle(ev.GraspAnswered(machine.request_id, False, "hand 4.9 cm from the handle"), t(9.0))
     assert machine.state is TaskState.MOVE_TO_HANDLE
@@ -219,7 +219,7 @@ def test_approve_without_proposal_is_a_notice():
 
 
 def test_ready_to_walk_opens_the_hand_first():
-    machine = DoorTaskMachine(MachineOptions(autonomy=AutonomyLevel.FULL))
+    machine = DoorTaskMachine(MachineOptions(autonomy=Autonomy.FULL))
     actions = _advance_to(machine, TaskState.READY_TO_WALK)
     releases = [a for a in actions if isinstance(a, act.CallGrasp) and not a.close]
     assert len(releases) == 1 and releases[0].request_id != machine.request_id
@@ -255,7 +255,7 @@ def test_table_one_rows_from_reports():
 
     runs = []
     for opening in DoorOpening:
-        machine = DoorTaskMachine(MachineOptions(opening=opening, autonomy=AutonomyLevel.FULL))
+        machine = DoorTaskMachine(MachineOptions(opening=opening, autonomy=Autonomy.FULL))
         Robot(machine).run(machine.start(t(0.0)))
         runs.append({"attempts": machine.report()})
     failed = DoorTaskMachine(MachineOptions(max_repeats=0))

@@ -4,17 +4,18 @@ repeats change something, deadlines scale with the work on the right clock, fall
 import pytest
 from test_machine import Robot, _advance_to, _until_approval, say, t
 
+from door_contract.vocabulary import Autonomy
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.machine import DoorTaskMachine, MachineOptions, MachineOptionsError
-from door_fsm.operator_commands import AutonomyLevel, OperatorCommand
+from door_fsm.operator_commands import OperatorCommand
 from door_fsm.records import Instant
 from door_fsm.states import Phase, StateOutcome, TaskState
 
 
 def _executing(state=TaskState.WALK_TO_DOOR, work_s=20.0):
     """A machine (full autonomy) whose ``state`` is executing a proposal of ``work_s`` seconds."""
-    machine = DoorTaskMachine(MachineOptions(autonomy=AutonomyLevel.FULL, execution_factor=2.0,
+    machine = DoorTaskMachine(MachineOptions(autonomy=Autonomy.FULL, execution_factor=2.0,
                                              execution_margin_s=5.0))
     _advance_to(machine, state)
     actions = machine.handle(ev.ProposalReady(machine.request_id, work_s=work_s), t(100.0))
@@ -74,7 +75,7 @@ def test_a_lost_node_stops_the_motion():
 
 
 def test_leaving_planning_cancels_the_planner_request():
-    machine = DoorTaskMachine(MachineOptions(autonomy=AutonomyLevel.FULL))
+    machine = DoorTaskMachine(MachineOptions(autonomy=Autonomy.FULL))
     _advance_to(machine, TaskState.WALK_TO_DOOR)
     planning = machine.request_id
     actions = say(machine, OperatorCommand.PAUSE)
@@ -102,7 +103,7 @@ def test_planning_timeout_repeats_detection_on_the_wall_clock():
 
 
 def test_repeats_carry_growing_attempts_and_never_resend_a_request():
-    machine = DoorTaskMachine(MachineOptions(autonomy=AutonomyLevel.FULL, max_repeats=3))
+    machine = DoorTaskMachine(MachineOptions(autonomy=Autonomy.FULL, max_repeats=3))
     robot = Robot(machine)
     pending = machine.start(t(0.0))
     while machine.state is not TaskState.WALK_TO_DOOR:
@@ -116,7 +117,7 @@ def test_repeats_carry_growing_attempts_and_never_resend_a_request():
 
 
 def test_operator_repeat_also_counts_as_an_attempt():
-    machine = DoorTaskMachine(MachineOptions(autonomy=AutonomyLevel.SUPERVISED))
+    machine = DoorTaskMachine(MachineOptions(autonomy=Autonomy.SUPERVISED))
     robot = Robot(machine, approve=False)
     robot.run(machine.start(t(0.0)))
     say(machine, OperatorCommand.APPROVE)  # the door

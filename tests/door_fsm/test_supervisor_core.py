@@ -16,11 +16,10 @@ from door_contract.payloads import (
     encode,
 )
 from door_contract.stamps import time_msg_of_ns
-from door_contract.vocabulary import DoorOpening, HingeSide, Side, WalkGoal
+from door_contract.vocabulary import Autonomy, DoorOpening, HingeSide, Side, WalkGoal
 from door_fsm import actions as act
 from door_fsm.graph_watch import GraphWatch
 from door_fsm.machine import MachineOptions
-from door_fsm.operator_commands import AutonomyLevel
 from door_fsm.records import Instant
 from door_fsm.supervisor import GRASP_SERVICES, SupervisedRobot, Supervisor
 from door_robot.profile import load_profile
@@ -46,7 +45,7 @@ def test_the_robot_is_read_from_its_profile(name: str, request: pytest.FixtureRe
 
 
 def _started(robot: SupervisedRobot, opening: DoorOpening = DoorOpening.PUSH) -> Supervisor:
-    supervisor = Supervisor(MachineOptions(opening=opening, autonomy=AutonomyLevel.FULL), "sqp", robot,
+    supervisor = Supervisor(MachineOptions(opening=opening, autonomy=Autonomy.FULL), "sqp", robot,
                             GraphWatch({"door_detector"}, start_at=0.0, graph_timeout=5.0))
     step, actions = supervisor.tick(t(0.0), {"door_detector"})
     assert step.start and act.AnnounceState("DETECT_DOOR") in actions

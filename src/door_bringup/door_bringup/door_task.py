@@ -45,6 +45,7 @@ from door_contract.network import keep_discovery_local
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import TaskReport, decode
 from door_contract.topics import Topics
+from door_contract.vocabulary import TaskEnd
 from door_fsm.operator_commands import request_id_of
 
 RECORDER = NodeLaunch("door_bringup", "bag_record", "bag_recorder")
@@ -176,10 +177,10 @@ def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, 
         operator.progress.tick()
         dead = [c.launch.node_name for c in supervisor.exited()]
         if dead:
-            return {"final_state": "FAILED", "failure_reason": f"process(es) exited: {', '.join(dead)}",
+            return {"final_state": TaskEnd.FAILED, "failure_reason": f"process(es) exited: {', '.join(dead)}",
                     "attempts": []}
     if operator.report is None:
-        return {"final_state": "FAILED", "failure_reason": f"no TaskReport within {timeout_s:g} s", "attempts": []}
+        return {"final_state": TaskEnd.FAILED, "failure_reason": f"no TaskReport within {timeout_s:g} s", "attempts": []}
     report = operator.report
     return {"final_state": report.final_state, "failure_reason": report.failure_reason,
             "opening": report.opening, "autonomy": report.autonomy, "attempts": list(report.attempts),
@@ -187,7 +188,7 @@ def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, 
 
 
 def write_report(run_dir: Path, options: TaskOptions, report: dict) -> str:
-    ok = report["final_state"] == "DONE"
+    ok = report["final_state"] == TaskEnd.DONE
     table = format_table(phase_rows([report]), 1, int(ok), f"Door task: {options.robot}, {options.opening} door, "
                          f"hinge {options.hinge}, seed {options.seed}")
     lines = [f"# Door task run {run_dir.name}", "", f"Final state: **{report['final_state']}**"
@@ -251,7 +252,7 @@ def main(argv: list[str] | None = None) -> int:
     for plot in plot_run(run_dir, options.opening, options.robot):
         print(f"plot: {plot}", flush=True)
     print(f"\nreport: {run_dir / 'report.md'}", flush=True)
-    return 0 if report["final_state"] == "DONE" else 1
+    return 0 if report["final_state"] == TaskEnd.DONE else 1
 
 
 if __name__ == "__main__":

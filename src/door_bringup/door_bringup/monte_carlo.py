@@ -36,6 +36,7 @@ from door_bringup.interrupts import interrupt_on_sigterm
 from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.table_one import format_table, phase_of, phase_rows
 from door_bringup.workspace import Workspace, repository_root
+from door_contract.vocabulary import TaskEnd
 
 
 def sample_trial(rng: np.random.Generator, base: TaskOptions, trial: int) -> TaskOptions:
@@ -148,7 +149,7 @@ def run_trials(trials: list[TaskOptions], out: Path, workspace: Workspace, jobs:
 
     def finished(index: int, report: dict) -> None:
         reports[index] = report
-        successes = sum(r["final_state"] == "DONE" for r in reports.values())
+        successes = sum(r["final_state"] == TaskEnd.DONE for r in reports.values())
         print(progress(len(reports), len(trials), successes, started), end="", file=sys.stderr, flush=True)
 
     if jobs == 1:
@@ -205,11 +206,11 @@ def summary(reports: list[dict]) -> str:
     for opening, paper in (("pull", "82 %"), ("push", "91 %")):
         subset = [r for r in reports if r["options"]["opening"] == opening]
         if subset:
-            ok = sum(r["final_state"] == "DONE" for r in subset)
+            ok = sum(r["final_state"] == TaskEnd.DONE for r in subset)
             sections.append(format_table(phase_rows(subset), len(subset), ok,
                                          f"{opening} doors (paper: {paper} overall)"))
-    ok = sum(r["final_state"] == "DONE" for r in reports)
-    failures = [f"- trial {i}: {r['failure_reason']}" for i, r in enumerate(reports) if r["final_state"] != "DONE"]
+    ok = sum(r["final_state"] == TaskEnd.DONE for r in reports)
+    failures = [f"- trial {i}: {r['failure_reason']}" for i, r in enumerate(reports) if r["final_state"] != TaskEnd.DONE]
     return "\n\n".join(sections + [f"**All doors: {ok}/{len(reports)} "
                                    f"({100.0 * ok / max(len(reports), 1):.0f} %); target ≥ 98 %**",
                                    overhead_line(reports), falls_line(reports),

@@ -115,7 +115,7 @@ class FsmSupervisorNode(Node):
                               reason=action.reason or "-", failure=self.core.machine.failure_reason or "-")
         self.get_logger().info(f"state {action.state}" + (f" ({action.reason})" if action.reason else ""))
         clock = "sim" if self.get_parameter("use_sim_time").value else "wall"
-        if (report := self.core.report(self.parameters["autonomy"], clock)) is not None:
+        if (report := self.core.report(clock)) is not None:
             self.pubs[Topics.TASK_REPORT].publish(String(data=encode(report)))
 
     def _ask(self, action: act.AskApproval) -> None:

@@ -20,12 +20,12 @@ from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from door_contract.vocabulary import DoorOpening, Motion, WalkGoal
+from door_contract.vocabulary import Autonomy, DoorOpening, Motion, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.approvals import approval_text, refusal
 from door_fsm.errors import DoorFsmError
-from door_fsm.operator_commands import AutonomyLevel, OperatorCommand, OperatorWord
+from door_fsm.operator_commands import OperatorCommand, OperatorWord
 from door_fsm.records import PHASE_CLOCK, Instant, StateRecord
 from door_fsm.states import Phase, StateOutcome, TaskState
 from door_fsm.wiring import build_wiring
@@ -42,7 +42,7 @@ class MachineOptionsError(DoorFsmError):
 @dataclass(frozen=True)
 class MachineOptions:
     opening: DoorOpening = DoorOpening.PUSH
-    autonomy: AutonomyLevel = AutonomyLevel.SUPERVISED
+    autonomy: Autonomy = Autonomy.SUPERVISED
     planning_timeout_s: float = 60.0    # wall clock, per attempt (detection included)
     approval_timeout_s: float = 120.0   # wall clock: operator silence
     execution_factor: float = 2.0       # execution deadline = work_s × factor + margin (robot clock)
@@ -259,7 +259,7 @@ class DoorTaskMachine:
 
     def _needs_approval(self) -> bool:
         level = self.options.autonomy
-        return level is AutonomyLevel.STEP or (level is AutonomyLevel.SUPERVISED and self._active_work.critical)
+        return level is Autonomy.STEP or (level is Autonomy.SUPERVISED and self._active_work.critical)
 
     # ------------------------------------------------------------------ operator
     def _on_operator(self, word: OperatorWord, now: Instant) -> list[act.Action]:

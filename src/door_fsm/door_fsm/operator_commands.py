@@ -78,10 +78,3 @@ def request_id_of(approval_request: str) -> int | None:
 def usage() -> str:
     return "approve N, reject N, repeat N (N = the request id), pause, stop, resume, abort or manual"
 
-
-class AutonomyLevel(str, Enum):
-    """Which proposals wait for the operator (as FlexBE's autonomy levels)."""
-
-    FULL = "full"              # none
-    SUPERVISED = "supervised"  # the critical ones (door estimate, footstep plans, handle turn)
-    STEP = "step"              # every proposal

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from door_contract.payloads import DoorEstimate, PlanningOutcome, TaskReport
-from door_contract.vocabulary import DoorOpening
+from door_contract.vocabulary import Autonomy, DoorOpening, TaskEnd
 
 
 def door_summary(estimate: DoorEstimate) -> dict:
@@ -34,8 +34,8 @@ def work_of(message: object, step_duration: float) -> float:
     return len(getattr(message, "poses", ())) * step_duration
 
 
-def task_report(state: str, failure_reason: str, opening: DoorOpening, autonomy: str, attempts: list[dict],
-                robot_clock: str) -> TaskReport:
+def task_report(state: TaskEnd, failure_reason: str, opening: DoorOpening, autonomy: Autonomy,
+                attempts: list[dict], robot_clock: str) -> TaskReport:
     """The TaskReport, saying which clock each time is on (docs/CLOCKS.md)."""
     from door_fsm.records import clocks_note
 

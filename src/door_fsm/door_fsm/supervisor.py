@@ -32,7 +32,7 @@ from door_contract.payloads import (
 )
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Services, ServiceSpec
-from door_contract.vocabulary import Backend, DoorOpening, PlannerKind, Side
+from door_contract.vocabulary import Autonomy, Backend, DoorOpening, PlannerKind, Side, TaskEnd
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.answers import execution_event, planning_event, usable_door_estimate
@@ -40,7 +40,7 @@ from door_fsm.door_context import DoorContext
 from door_fsm.exchange import PlanExchange, Proposal
 from door_fsm.graph_watch import GraphStep, GraphWatch
 from door_fsm.machine import DoorTaskMachine, MachineOptions
-from door_fsm.operator_commands import AutonomyLevel, UnknownCommandError, parse_command
+from door_fsm.operator_commands import UnknownCommandError, parse_command
 from door_fsm.records import Instant
 from door_fsm.states import Phase, TaskState
 from door_fsm.summaries import door_summary, task_report, work_of
@@ -83,7 +83,7 @@ class Supervisor:
         """The supervisor of the node's parameters (``door_fsm.parameters``), started at wall
         time ``wall_now`` (s); :class:`MachineOptionsError` names a bad option."""
         options = MachineOptions(
-            opening=DoorOpening(p["opening"]), autonomy=AutonomyLevel(p["autonomy"]),
+            opening=DoorOpening(p["opening"]), autonomy=Autonomy(p["autonomy"]),
             planning_timeout_s=p["planning_timeout"], approval_timeout_s=p["approval_timeout"],
             execution_factor=p["execution_timeout_factor"], execution_margin_s=p["execution_timeout_margin"],
             max_repeats=p["max_repeats"])
@@ -195,12 +195,12 @@ class Supervisor:
         self.exchange.sent(stamp_ns, request_id)
         return proposal.message
 
-    def report(self, autonomy: str, robot_clock: str) -> TaskReport | None:
+    def report(self, robot_clock: str) -> TaskReport | None:
         """The TaskReport once the task has ended (``robot_clock``: "sim" or "wall"), else None."""
         if not self.machine.state.is_terminal:
             return None
-        return task_report(self.machine.state.value, self.machine.failure_reason, self.door.opening, autonomy,
-                           self.machine.report(), robot_clock)
+        return task_report(TaskEnd(self.machine.state.value), self.machine.failure_reason, self.door.opening,
+                           self.machine.options.autonomy, self.machine.report(), robot_clock)
 
     def _answer(self, answer: Proposal | PlanningOutcome | None, now: Instant) -> list[act.Action]:
         if answer is None:
