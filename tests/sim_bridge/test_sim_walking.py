@@ -16,6 +16,7 @@ from walk_plans import sole_error, straight_plan, turn_plan
 
 from door_contract.payloads import OutcomeStatus
 from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
+from door_sim_bridge.execution.footsteps import STILL_RADIUS, STILL_TIME, STILL_TIMEOUT
 from door_sim_bridge.world import DoorWorld, EventKind, StanceConfig, WorldConfig
 
 FAR_FROM_THE_DOOR = StanceConfig(distance=3.5)
@@ -52,6 +53,19 @@ def test_turns_30_degrees_in_place_within_3_degrees(world):
     assert heading < math.radians(3.0) and distance < 0.03
     yaw = math.atan2(world.base_pose()[1, 0], world.base_pose()[0, 0])
     assert yaw == pytest.approx(math.radians(30.0), abs=math.radians(3.0))
+
+
+def test_a_walk_ends_with_the_base_at_rest(world):
+    """A walk ends once the pelvis has stopped (footsteps.STILL_RADIUS for STILL_TIME): after a
+    90° turn it rocked ±8 cm for 4 s, and an arm motion planned from it missed the handle."""
+    plan = turn_plan(world, math.radians(15.0), 3)
+    started = world.time
+    result = FootstepExecution(world, plan).run()
+    assert result.status is OutcomeStatus.SUCCESS, result.reason
+    assert world.time - started <= 3 * 2 * world.profile.walking.step_duration + 1.0 + STILL_TIMEOUT + 0.1
+    at_end = world.base_pose()[:2, 3].copy()
+    world.step(int(STILL_TIME * world.config.physics_rate))
+    assert np.linalg.norm(world.base_pose()[:2, 3] - at_end) < 2 * STILL_RADIUS
 
 
 def test_walks_with_an_arm_held_out(world):
