@@ -2,8 +2,16 @@
 
 import pytest
 
-from door_bringup.passage_rig import HandCommand, PassageRun, main, opening_sequence, passage_steps
-from door_contract.vocabulary import DoorOpening, HingeSide, Motion, WalkGoal
+from door_bringup.passage_rig import (
+    NODE_DEFAULTS,
+    HandCommand,
+    PassageRun,
+    main,
+    opening_hand,
+    opening_sequence,
+    passage_steps,
+)
+from door_contract.vocabulary import DoorOpening, HingeSide, Motion, WalkGoal, grasp_hand
 
 
 def test_the_doors_are_opened_in_the_fsms_order():
@@ -42,3 +50,17 @@ def test_an_unknown_robot_is_refused():
     with pytest.raises(SystemExit) as stopped:
         main(["--robot", "asimo"])
     assert stopped.value.code == 2
+
+
+def test_a_sideways_push_door_is_opened_by_the_hinge_side_hand_else_by_the_fsms():
+    sideways = {**NODE_DEFAULTS, "push_passage": "sideways"}
+    for hinge in HingeSide:
+        assert opening_hand(hinge, DoorOpening.PUSH, sideways) is hinge
+        assert opening_hand(hinge, DoorOpening.PUSH, NODE_DEFAULTS) is grasp_hand(hinge, DoorOpening.PUSH)
+        assert opening_hand(hinge, DoorOpening.PULL, sideways) is grasp_hand(hinge, DoorOpening.PULL)
+
+
+def test_an_unknown_push_passage_is_refused(capsys):
+    with pytest.raises(SystemExit) as stopped:
+        main(["--push-passage", "diagonal"])
+    assert stopped.value.code == 2 and "push-passage" in capsys.readouterr().err

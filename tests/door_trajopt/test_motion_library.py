@@ -259,3 +259,36 @@ def test_the_tuck_takes_the_blocking_arm_to_the_walking_posture_with_the_torso_h
     assert np.allclose(plan.path.positions[-1, own], walking[own], atol=1e-4)
     assert plan.path.times[-1] >= library.options.tuck_duration - 1e-9
     assert plan.result.max_violation <= library.constraint_tolerance
+
+
+@pytest.mark.slow
+def test_sideways_the_hinge_side_hand_opens_a_push_door_and_holds_it_with_the_arm_inside_the_doorway():
+    """footstep_planner.push_passage (a study option): the robot stands sideways, its back to the
+    hinge; the hinge-side hand approaches, grasps, turns and pushes, lets go, and ready_to_walk
+    keeps it on the leaf (the door never closes on the latch) with every arm joint inside the
+    doorway, doorway_arm_margin from the latch-side post (the elbow struck the post without)."""
+    from door_bringup.passage_rig import NODE_DEFAULTS, open_door, opening_hand
+    from door_bringup.passage_rig import stand_world as rig_stand_world
+    from door_sim_bridge.world import DoorConfig
+
+    parameters = {**NODE_DEFAULTS, "push_passage": "sideways"}
+    kinematics = talos_kinematics()
+    with rig_stand_world(DoorConfig(opening=DoorOpening.PUSH, hinge_side=HingeSide.LEFT), robot="talos",
+                         parameters=parameters) as world:
+        estimate = estimate_from_world(world)
+        hand = opening_hand(estimate.hinge_side, DoorOpening.PUSH, parameters)
+        assert hand is estimate.hinge_side
+        stage, status, reason = open_door(world, kinematics, estimate, {}, hand)
+        assert (stage, status) == (Motion.READY_TO_WALK.value, "success"), reason
+        world.step(240)  # a second on: the closer presses the leaf against the hand
+        door = world.door_state()
+        assert not door.latched and door.hinge_angle > 0.1
+        setup = motion_setup(world, kinematics, estimate, hand)
+        along = setup.door.along
+        limit = setup.door_width - MotionLibrary().options.post_inset
+        chain = setup.chain
+        arm = [chain.body_frame(i) for i in range(2, chain.size)] + [chain.tcp_frame]
+        q = chain.chain_of(chain.body_q)
+        for frame in arm:  # inside the doorway, short of the latch-side post's face
+            point = chain.point_and_jacobian(q, frame)[0]
+            assert (point - setup.door.hinge_point) @ along < limit, frame

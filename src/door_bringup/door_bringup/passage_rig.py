@@ -11,11 +11,14 @@ proves little. ``--robot`` is the main job's robot option: the
 sim's robot, the kinematics the motions are planned with, and the footstep planner's limits.
 
 The walk through is the FSM's: a push door in one walk; a pull door to the doorway, the
-blocking arm's tuck, and on through (:mod:`footstep_planner.pull_passage`). ``--pull-passage``
-and ``--tuck-at`` are the footstep planner's ``pull_passage`` and ``tuck_at``, for studies.
+blocking arm's tuck, and on through (:mod:`footstep_planner.pull_passage`). ``--pull-passage``,
+``--push-passage`` and ``--tuck-at`` are the footstep planner's parameters of those names, for
+studies (``--push-passage sideways``: the push door opened and passed sideways, its back to the
+hinge, by the hinge-side hand: :mod:`footstep_planner.push_passage`).
 
     python -m door_bringup.passage_rig --robot g1 --openings push pull --hinges left right --trials 3
     python -m door_bringup.passage_rig --openings pull --trials 5 --tuck-at 0.5
+    python -m door_bringup.passage_rig --openings push --trials 10 --push-passage sideways
 """
 
 from __future__ import annotations
@@ -48,6 +51,7 @@ from footstep_planner.narrow import PullPassage
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import PLANNER_PARAMETERS
 from footstep_planner.proposal import contract_footsteps
+from footstep_planner.push_passage import PushPassage
 from footstep_planner.requests import (
     GoalSettings,
     Snapshot,
@@ -107,17 +111,18 @@ def perfect_estimate(world: DoorWorld) -> DoorEstimate:
 
 
 def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
-                robot: str = "talos") -> DoorWorld:
-    """``robot`` at the stand pose the footstep planner chooses for ``door`` (plus ``offset``:
-    along the door normal, along the wall, yaw), standing on the floor."""
+                robot: str = "talos", parameters: Mapping[str, object] = NODE_DEFAULTS) -> DoorWorld:
+    """``robot`` at the stand pose the footstep planner (with ``parameters``) chooses for
+    ``door``, plus ``offset`` (along the door normal, along the wall, yaw), standing on the
+    floor: facing the door, or sideways beside a push door's opening (``push_passage``)."""
     with DoorWorld(WorldConfig(robot_profile=robot, door=door)) as probe:
         estimate = perfect_estimate(probe)
-    settings = GoalSettings.from_parameters(NODE_DEFAULTS)
-    options = planner_options(robot, NODE_DEFAULTS)
+    settings = GoalSettings.from_parameters(parameters)
+    options = planner_options(robot, parameters)
     geometry = door_geometry_from_estimate(estimate, door.opening, 0.0, settings.handle_standoff)
     stand = stand_pose(geometry, options, settings)
     return DoorWorld(WorldConfig(robot_profile=robot, door=door, stance=StanceConfig(
-        distance=-stand.x + offset[0], lateral_offset=stand.y + offset[1], yaw=offset[2])))
+        distance=-stand.x + offset[0], lateral_offset=stand.y + offset[1], yaw=stand.yaw + offset[2])))
 
 
 def motion_setup(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate, hand: Side,
@@ -162,29 +167,38 @@ def run_recording(world: DoorWorld, execution: FootstepExecution | TrajectoryExe
     return execution.result
 
 
+def opening_hand(hinge: HingeSide, opening: DoorOpening, parameters: Mapping[str, object]) -> Side:
+    """The hand that opens the door: the FSM's (:func:`~door_contract.vocabulary.grasp_hand`),
+    but the hinge-side one when the planner's ``push_passage`` opens a push door sideways (the
+    door is on that hand's side: :mod:`footstep_planner.push_passage`)."""
+    sideways = GoalSettings.from_parameters(parameters).push_passage is PushPassage.SIDEWAYS
+    return hinge if opening is DoorOpening.PUSH and sideways else grasp_hand(hinge, opening)
+
+
 def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate,
-              peaks: dict[str, float]) -> tuple[str, str, str]:
-    """Run the opening sequence; (stage, status, reason) of the step it stopped in, or of the
-    last; the contacts' peak forces go into ``peaks``."""
+              peaks: dict[str, float], hand: Side) -> tuple[str, str, str]:
+    """Run the opening sequence with ``hand``; (stage, status, reason) of the step it stopped
+    in, or of the last; the contacts' peak forces go into ``peaks``."""
     opening = world.config.door.opening
-    hand, library, door_angle = grasp_hand(estimate.hinge_side, opening), MotionLibrary(), 0.0
+    library, door_angle = MotionLibrary(), 0.0
     for step in opening_sequence(opening):
         if isinstance(step, HandCommand):
             answer = world.grasp(hand, step is HandCommand.GRASP)
             if not answer.success:
                 return step.value, "failure", answer.message
             continue
-        status, reason, door_angle = run_motion(world, kinematics, estimate, step, library, door_angle, peaks)
+        status, reason, door_angle = run_motion(world, kinematics, estimate, step, library, door_angle, peaks, hand)
         if status != OutcomeStatus.SUCCESS.value:
             return step.value, status, reason
     return Motion.READY_TO_WALK.value, "success", ""
 
 
 def run_motion(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate, motion: Motion,
-               library: MotionLibrary, door_angle: float, peaks: dict[str, float]) -> tuple[str, str, float]:
-    """Plan ``motion`` from the measured posture, as the trajectory optimiser node does, and
-    execute it: (status, reason, the door angle the plan ends at)."""
-    hand = grasp_hand(estimate.hinge_side, world.config.door.opening)
+               library: MotionLibrary, door_angle: float, peaks: dict[str, float],
+               hand: Side) -> tuple[str, str, float]:
+    """Plan ``motion`` from the measured posture, as the trajectory optimiser node does, for
+    ``hand`` (the other arm's motions for the other), and execute it: (status, reason, the
+    door angle the plan ends at)."""
     side = hand.other if motion.uses_other_arm else hand
     setup = motion_setup(world, kinematics, estimate, side, start_door_for(motion, door_angle, library.options))
     plan = library.plan(motion, setup, setup.chain.chain_of(setup.chain.body_q), Backend.SQP)
@@ -220,10 +234,11 @@ def walk_through(world: DoorWorld, estimate: DoorEstimate, kinematics: RobotKine
     settings = GoalSettings.from_parameters(parameters)
     options = planner_options(world.config.robot_profile, parameters)
     planners, library, peaks = WalkPlanners(), MotionLibrary(), dict[str, float]()
+    hand = opening_hand(estimate.hinge_side, world.config.door.opening, parameters)
     for step in passage_steps(world.config.door.opening):
         if isinstance(step, Motion):
             status, reason, _ = run_motion(world, kinematics, estimate, step, library,
-                                           world.door_state().hinge_angle, peaks)
+                                           world.door_state().hinge_angle, peaks, hand)
         else:
             status, reason = _walk(world, estimate, step, planners, options, settings, peaks)
         if status != OutcomeStatus.SUCCESS.value:
@@ -259,14 +274,15 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
     rng = np.random.default_rng(trial)
     jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
     robot = kinematics.profile.name
+    parameters = {**NODE_DEFAULTS, **(planner_parameters or {})}
     with stand_world(DoorConfig(opening=opening, hinge_side=hinge), (jitter[0], jitter[1], jitter[2]),
-                     robot) as world:
+                     robot, parameters) as world:
         estimate = perfect_estimate(world)
         peaks: dict[str, float] = {}
-        stage, status, reason = open_door(world, kinematics, estimate, peaks)
+        stage, status, reason = open_door(world, kinematics, estimate, peaks,
+                                          opening_hand(hinge, opening, parameters))
         if status == "success":  # the walk's contacts are the ones that matter then
-            stage, status, reason, peaks = walk_through(world, estimate, kinematics,
-                                                        {**NODE_DEFAULTS, **(planner_parameters or {})})
+            stage, status, reason, peaks = walk_through(world, estimate, kinematics, parameters)
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
         return PassageRun(robot, opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle,
                           strikes)
@@ -280,12 +296,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     add_robot_argument(parser, "robot profile (params/robot_<name>.yaml); default talos")
     parser.add_argument("--pull-passage", choices=[p.value for p in PullPassage],
                         default=NODE_DEFAULTS["pull_passage"], help="the footstep planner's pull_passage")
+    parser.add_argument("--push-passage", choices=[p.value for p in PushPassage],
+                        default=NODE_DEFAULTS["push_passage"],
+                        help="the footstep planner's push_passage (sideways: a study option, footstep_planner.push_passage)")
     parser.add_argument("--tuck-at", type=float, default=NODE_DEFAULTS["tuck_at"],
                         help="the footstep planner's tuck_at: the doorway walk ends this far before the door plane (m)")
     args = parser.parse_args(argv)
     if args.trials < 1:
         parser.error("--trials must be at least 1")
-    overrides = {"pull_passage": args.pull_passage, "tuck_at": args.tuck_at}
+    overrides = {"pull_passage": args.pull_passage, "push_passage": args.push_passage, "tuck_at": args.tuck_at}
     try:
         validate_all(PLANNER_PARAMETERS, overrides)
     except ParameterRangeError as error:

@@ -42,6 +42,7 @@ from door_trajopt.waypoint_constraints import WaypointFunction, WaypointValue, f
 
 FULL_MASK = np.ones(6)
 POSITION_MASK = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
+ROTATION_MASK = np.array([0.0, 0.0, 0.0, 1.0, 1.0, 1.0])
 HINGE_LIMITS = (0.0, 1.75)  # rad, door stop
 HANDLE_LIMITS = (0.0, 1.0)  # rad, handle stop
 
@@ -89,6 +90,8 @@ class MotionOptions:
     door_stop_lateral: float = 0.10  # m from the base's centreline (hand's side) of the hand stopping a pushed door
     release_retreat: float = 0.08  # m the hand backs off a pulled door's lever before it swings to walking posture
     tuck_duration: float = 2.0  # s, at least, for the blocking arm's tuck: the leaf follows the hand
+    doorway_arm_margin: float = 0.16  # m from the latch-side post's face to the arm's joints, a
+    # sideways robot's released arm on a pushed leaf (at 0.10 the elbow struck the post in 4 of 8 doors)
 
     def __post_init__(self) -> None:
         checks = {"waypoints": (4, 200), "handle_turn": (0.1, HANDLE_LIMITS[1]),
@@ -98,7 +101,7 @@ class MotionOptions:
                   "block_standoff": (0.0, 0.5), "posture_weight": (0.0, 100.0),
                   "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3), "head_clearance": (0.0, 0.5),
                   "door_stop_lateral": (0.0, 0.3), "release_retreat": (0.0, 0.3),
-                  "tuck_duration": (0.0, 10.0)}
+                  "tuck_duration": (0.0, 10.0), "doorway_arm_margin": (0.0, 0.5)}
         for name, (low, high) in checks.items():
             value = getattr(self, name)
             if not (np.isfinite(value) and low <= value <= high):
@@ -488,16 +491,32 @@ def _shared_with_other_arm(chain: ArmChain) -> tuple[str, ...]:
 
 
 def _door_stop(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
-    """Push doors: the released hand slides along the leaf to straight ahead of the body.
+    """Push doors: the released hand stays on the leaf, which the closer presses against the
+    fingers, so the hand stops the door and the door never closes on the latch.
 
-    The closer presses the leaf against the fingers, so the hand stops the door; held where
-    it grasped (a few cm from the latch-side post) it would meet the post as the robot
-    walks, while straight ahead of the base it passes the opening's middle and pushes the
+    Facing the door (the leaf runs across the base's y axis): the hand slides along the leaf
+    to straight ahead of the body (:func:`_door_stop_ahead`). Sideways, the back to the hinge
+    (the stance of :mod:`footstep_planner.push_passage`): :func:`_door_stop_beside`.
+    """
+    if abs(setup.door.along[1]) < DOOR_ACROSS_FRONT:
+        return _door_stop_beside(setup, start_chain, options)
+    return _door_stop_ahead(setup, start_chain, options)
+
+
+DOOR_ACROSS_FRONT = 0.7
+"""|y| of the closed door's unit direction (hinge to latch) in the base frame above which the
+door runs across the robot's front (facing it, within 45°); below, along its side (sideways)."""
+
+
+def _door_stop_ahead(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
+    """Facing a push door: the released hand slides along the leaf to straight ahead of the body.
+
+    Held where it grasped (a few cm from the latch-side post) it would meet the post as the
+    robot walks, while straight ahead of the base it passes the opening's middle and pushes the
     leaf open as the robot walks (the body pushes it further). The TCP keeps its
     orientation and its distance from the face: every waypoint is on the straight line
     along the leaf to ``door_stop_lateral`` from the base's centreline on the hand's side
-    (:func:`_door_stop_offset`; reaching across the chest moved the CoM out), so the
-    fingers never leave the face and the door never closes on the latch.
+    (:func:`_door_stop_offset`; reaching across the chest moved the CoM out).
     """
     n, m = options.waypoints, setup.chain.size + 2
     start_tcp = setup.chain.tcp_pose(start_chain)
@@ -514,6 +533,85 @@ def _door_stop(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptio
     problem = _problem(setup, start_chain, options, (False, False), constraints)
     chain_path = _continuation_ik(setup.chain, targets, start_chain)
     return MotionProblem(problem, np.hstack([chain_path, np.tile(setup.start_door, (n, 1))]), setup.chain)
+
+
+def _door_stop_beside(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions) -> MotionProblem:
+    """Sideways at a push door: the hand that pushed it stays on the leaf (its distance from
+    the leaf's plane and its orientation held at every waypoint, free to slide along it) and
+    ends with every arm joint inside the doorway, ``doorway_arm_margin`` from the latch-side
+    post along the wall: g = (p − p_hinge)·u − (W − post_inset − margin) ≤ 0.
+
+    The robot side-steps through next, the hand and then the back pushing the leaf open. The
+    approach turned the torso ~80° towards the door, and the elbow then stood 6 cm beyond the
+    post's face and struck it; where the arm ends (torso turned back or not) is the optimiser's.
+    """
+    n, m = options.waypoints, setup.chain.size + 2
+    start_tcp = setup.chain.tcp_pose(start_chain)
+    leaf_normal = setup.door.leaf_rotation(setup.start_door[0]) @ setup.door.normal
+    face_distance = float((start_tcp[:3, 3] - setup.door.hinge_point) @ leaf_normal)
+    shared = len(_shared_with_other_arm(setup.chain))
+    frames = tuple(setup.chain.body_frame(i) for i in range(shared, setup.chain.size)) + (setup.chain.tcp_frame,)
+    limit = setup.door_width - options.post_inset - options.doorway_arm_margin
+    waypoints = range(1, n)
+    constraints = [
+        waypoint_constraint("on_leaf", ConstraintKind.EQUALITY, _leaf_plane_distance(setup, face_distance),
+                            1, waypoints, m, n),
+        waypoint_constraint("hand_orientation", ConstraintKind.EQUALITY,
+                            _tcp_target_error(setup.chain, _fixed_target(start_tcp), ROTATION_MASK), 3, waypoints, m, n),
+        waypoint_constraint("arm_in_doorway", ConstraintKind.INEQUALITY, _along_wall_below(setup, frames, limit),
+                            len(frames), [n - 1], m, n)]
+    problem = _problem(setup, start_chain, options, (False, False), constraints)
+    end_chain = _beside_end_guess(setup, start_chain, start_tcp, frames, limit)
+    guess = _through_keys(problem, [(0, start_chain), (n - 1, end_chain)], setup.start_door)
+    return MotionProblem(problem, guess, setup.chain)
+
+
+BESIDE_SLIDES = (0.10, 0.15, 0.20, 0.25)
+"""How far (m) the initial guess slides the hand along the leaf towards the hinge, tried in turn."""
+
+
+def _beside_end_guess(setup: MotionSetup, start_chain: np.ndarray, start_tcp: np.ndarray,
+                      frames: tuple[str, ...], limit: float) -> np.ndarray:
+    """An end posture for :func:`_door_stop_beside`'s initial guess: IK of the hand slid along
+    the leaf towards the hinge (:data:`BESIDE_SLIDES`), the first that brings every frame
+    within ``limit`` along the wall; the start when none does."""
+    towards_hinge = -(setup.door.leaf_rotation(setup.start_door[0]) @ setup.door.along)
+    inside = _along_wall_below(setup, frames, limit)
+    for slide in BESIDE_SLIDES:
+        target = start_tcp.copy()
+        target[:3, 3] += slide * towards_hinge
+        end = _ik(setup.chain, target, start_chain)
+        if np.max(inside(np.concatenate([end, setup.start_door]), False)[0]) <= 0.0:
+            return end
+    return start_chain
+
+
+def _leaf_plane_distance(setup: MotionSetup, distance: float) -> WaypointFunction:
+    """h = (p_tcp − p_hinge)·n(θ) − distance = 0, n(θ) = R(θ)n the leaf's robot-side normal at
+    the waypoint's hinge angle (the door does not move here: θ is pinned)."""
+    k, door = setup.chain.size, setup.door
+
+    def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
+        point = setup.chain.tcp_pose(q[:k])[:3, 3]
+        normal = door.leaf_rotation(q[k]) @ door.normal
+        value = np.array([(point - door.hinge_point) @ normal - distance])
+        return value, np.concatenate([normal @ setup.chain.tcp_jacobian(q[:k])[:3], [0.0, 0.0]])[None, :]
+    return function
+
+
+def _along_wall_below(setup: MotionSetup, frames: tuple[str, ...], limit: float) -> WaypointFunction:
+    """g_i = (p_i − p_hinge)·u − limit ≤ 0 for each frame's origin p_i (u along the closed
+    door from the hinge towards the latch)."""
+    k, along, hinge = setup.chain.size, setup.door.along, setup.door.hinge_point
+
+    def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
+        values, rows = [], []
+        for frame in frames:
+            point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
+            values.append((point - hinge) @ along - limit)
+            rows.append(np.concatenate([along @ jacobian, np.zeros(2)]))
+        return np.array(values), np.array(rows)
+    return function
 
 
 def _door_stop_offset(door: DoorModel, theta: float, hand: np.ndarray, lateral: float) -> np.ndarray:

@@ -32,6 +32,20 @@ PLANNER_PARAMETERS = (
     ParameterSpec("passage_door_angle", 1.57, "door angle assumed while passing: the body pushes the "
                   "leaf open ([Banerjee 2015] used a potential field for the swinging door)", unit="rad",
                   minimum=0.0, maximum=2.0),
+    ParameterSpec("push_passage", "facing", "how a push door is passed: 'facing' opens it facing the door and "
+                  "walks through facing the doorway, the body pushing the leaf; 'sideways' opens it standing "
+                  "sideways beside the doorway, its back to the hinge, and side-steps through (a study option of "
+                  "the passage rig: footstep_planner.push_passage)", choices=("facing", "sideways")),
+    ParameterSpec("push_side_reach", 0.45, "sideways push: base to door plane when opening", unit="m",
+                  minimum=0.2, maximum=1.5),
+    ParameterSpec("push_stand_offset", 0.12, "sideways push: the stand pose and side-step line from the "
+                  "opening's centre towards the latch (the leaf swings past the back)", unit="m",
+                  minimum=-0.5, maximum=0.5),
+    ParameterSpec("push_side_beyond", 0.9, "sideways push: the side-step through ends this far past the door "
+                  "plane", unit="m", minimum=0.3, maximum=3.0),
+    ParameterSpec("push_step_away", 0.5, "sideways push: then the robot steps this far forward, away from the "
+                  "hinge, out of the closing leaf's sweep (side-stepping on, the handle hooked the pelvis)",
+                  unit="m", minimum=0.0, maximum=2.0),
     ParameterSpec("pull_passage", "sideways", "how a blocked pull door is passed: 'sideways' side-steps "
                   "through facing the hinge, the blocking hand on the leaf until the arm tucks; 'facing' turns to "
                   "face the doorway (the hand leaves the leaf, which swings into the body: a study option)",

@@ -24,12 +24,13 @@ from footstep_planner.astar import FootstepPlanner
 from footstep_planner.door import DoorGeometry, wall_obstacles
 from footstep_planner.errors import RequestRefused
 from footstep_planner.footstep import Footstep, Pose2D, Stance
-from footstep_planner.goals import stand_pose_for_opening
+from footstep_planner.goals import push_stand_pose, stand_pose_for_opening
 from footstep_planner.legs import Leg, plan_legs
 from footstep_planner.narrow import PullPassage, passage_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import PlanResult
 from footstep_planner.pull_passage import doorway_legs, in_doorway, onward_legs, pull_passage_legs
+from footstep_planner.push_passage import PushPassage, push_passage_legs
 from footstep_planner.robot_limits import options_for_walking, planner_options
 from footstep_planner.world import World
 
@@ -101,6 +102,16 @@ class GoalSettings:
     """Goal distance past the door plane (m)."""
     passage_door_angle: float = 1.57
     """Push-door angle assumed while passing: the body pushes the leaf open (rad)."""
+    push_passage: PushPassage = PushPassage.FACING
+    """How a push door is passed (:class:`~footstep_planner.push_passage.PushPassage`; sideways is a study option)."""
+    push_side_reach: float = 0.45
+    """Sideways: base to the door plane when opening a push door (m)."""
+    push_stand_offset: float = 0.12
+    """Sideways: the stand pose and side-step line from the opening's centre towards the latch (m)."""
+    push_side_beyond: float = 0.9
+    """Sideways: the side-step through ends this far past the door plane (m)."""
+    push_step_away: float = 0.5
+    """Sideways: then the robot steps this far forward, away from the hinge, out of the closing leaf's sweep (m)."""
     pull_passage: PullPassage = PullPassage.SIDEWAYS
     """How a blocked pull door is passed (:class:`~footstep_planner.narrow.PullPassage`)."""
     pull_passage_shift: float = 0.0
@@ -131,7 +142,10 @@ class WalkProblem:
 
 
 def stand_pose(door: DoorGeometry, options: FootstepPlannerOptions, settings: GoalSettings) -> Pose2D:
-    """Where the robot stands to open ``door`` (:func:`~footstep_planner.goals.stand_pose_for_opening`)."""
+    """Where the robot stands to open ``door`` (:func:`~footstep_planner.goals.stand_pose_for_opening`,
+    or sideways :func:`~footstep_planner.goals.push_stand_pose`)."""
+    if door.opening is DoorOpening.PUSH and settings.push_passage is PushPassage.SIDEWAYS:
+        return push_stand_pose(door, options, settings.push_side_reach, settings.push_stand_offset)
     pull = door.opening is DoorOpening.PULL
     return stand_pose_for_opening(door, options, reach=settings.stand_reach_pull if pull else settings.stand_reach,
                                   handle_offset=settings.stand_handle_offset,
@@ -159,7 +173,9 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
       the planned stand pose: a walk there lands within 5 cm, and stepping back onto the planned
       pose while turning, the blocking hand on the leaf, brought the hinge-side knee onto the
       leaf's free edge;
-    * through a PUSH door: the leaf at :func:`passage_angle` is an obstacle.
+    * through a PUSH door: the leaf at :func:`passage_angle` is an obstacle; sideways
+      (``push_passage``), side-step from the stand pose, step away from the leaf and turn to
+      face away (:func:`~footstep_planner.push_passage.push_passage_legs`), wall and posts only.
 
     A doorway narrower than the body is passed sideways
     (:func:`~footstep_planner.narrow.passage_legs`). Raises
@@ -180,6 +196,10 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
     if goal is WalkGoal.DOORWAY:
         raise RequestRefused("a doorway walk is a pull door's (the blocking arm tucks there); "
                              "a push door is walked through in one go")
+    if settings.push_passage is PushPassage.SIDEWAYS:
+        legs = push_passage_legs(door, options, settings.push_stand_offset, settings.push_side_beyond,
+                                 settings.push_step_away, settings.beyond_door)
+        return WalkProblem(start, legs, World(wall_obstacles(door)), door)
     door = door.with_angle(passage_angle(door.angle, settings))
     return WalkProblem(start, passage_legs(door, options, settings.beyond_door), World.from_door(door), door)
 

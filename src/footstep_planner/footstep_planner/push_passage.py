@@ -1,0 +1,79 @@
+"""A push door passed sideways, the back to the hinge, the leading shoulder first (a study option).
+
+TALOS's shoulders are 0.76 m across (0.80 m with the grippers) in a 0.87 m clear opening.
+Walking through facing the doorway, the hinge-side shoulder passes 4 cm from the hinge
+post, so the leaf must be pushed open to ~1.53 rad, and near its axis: the shoulder wedged
+the leaf with 100-180 N sideways and 20 of 27 push doors fell there (issue #11). Sideways
+the body is 0.50 m deep, and the leaf only has to clear the robot's back, ~0.36 m from the
+hinge: 1.17 rad, pushed at the handle, 0.84 m from the axis. Turning sideways after the
+door is opened takes 5+ steps, and meanwhile the closer shuts and latches the door; so the
+robot already stands sideways to open it, as a person carrying a box backs through:
+
+* :func:`~footstep_planner.goals.push_stand_pose`: ``reach`` m in front of the door plane, ``offset`` m from the
+  opening's centre towards the latch, facing along the wall towards the latch. The door is
+  on the robot's hinge-side hand's side (:func:`door_contract.vocabulary.grasp_hand`), which
+  opens it with the torso turned towards it (approach, turn, push as facing), then slides
+  along the leaf, its arm inside the doorway (the motion library's ``ready_to_walk``);
+* :func:`push_passage_legs`: side-step through along that line, the hand and then the back
+  (the handle resting on it, 10-20 N) pushing the leaf open, to ``beyond`` m past the door
+  plane; step forward ``away`` m, away from the hinge, out of the closing leaf's sweep (side-
+  stepping on, the body sways 5-7 cm back at every step and the handle hooks the pelvis as
+  the back's corner passes it: 200-300 N); turn to face away.
+
+The leaf is no obstacle of these legs (the robot pushes it); wall and posts are.
+
+**A study option** (``push_passage: sideways``; the default is ``facing``,
+:func:`~footstep_planner.narrow.passage_legs` around the leaf at ``passage_door_angle``). The
+passage rig, placed at the stand pose: 11 of 19 doors through, against 0 of 6 facing (issue
+#11). Not yet in the graph: the FSM and the optimiser take the latch-side hand for a push door
+(:func:`door_contract.vocabulary.grasp_hand`); walked to the stand pose from 2.5 m, the last
+side steps sway 4-8 cm towards the door and the arm struck the handle 6 cm away (1 fall in 6);
+and side-stepping the body sways ±10 cm along the walk, so the hand on the leaf bangs it
+(300-700 N) while the leaf is below ~0.9 rad, which felled 5 of the 19.
+"""
+
+from __future__ import annotations
+
+from enum import Enum
+
+from footstep_planner.door import DoorGeometry
+from footstep_planner.footstep import Pose2D
+from footstep_planner.goals import push_line, towards_latch
+from footstep_planner.legs import Leg
+from footstep_planner.narrow import SIDEWAYS
+from footstep_planner.options import FootstepPlannerOptions
+from footstep_planner.validation import FieldRange, check_range
+
+__all__ = ["PUSH_LEG_NAMES", "PushPassage", "push_passage_legs"]
+
+
+class PushPassage(Enum):
+    """How the robot passes a push door."""
+
+    FACING = "facing"
+    """Face the door to open it, walk through facing the doorway, the body pushing the leaf."""
+    SIDEWAYS = "sideways"
+    """Open it standing sideways beside the doorway, its back to the hinge; side-step through."""
+
+PUSH_LEG_NAMES = ("side-step through the doorway", "step away from the leaf", "turn to face away")
+"""The legs of :func:`push_passage_legs`, in order."""
+
+
+def push_passage_legs(door: DoorGeometry, options: FootstepPlannerOptions, offset: float, beyond: float,
+                      away: float, distance_beyond: float) -> tuple[Leg, ...]:
+    """The legs through a push door from :func:`~footstep_planner.goals.push_stand_pose` (same
+    ``offset``): side-step along its line (:func:`~footstep_planner.goals.push_line`) to s = −``beyond`` (each state within 0.1 rad of sideways and
+    5 cm of the line: :data:`~footstep_planner.narrow.SIDEWAYS`), step ``away`` m towards the
+    latch (forward) and on to ``distance_beyond`` past the plane when that is further, and
+    turn there to face away from the approach side."""
+    check_range("beyond", beyond, FieldRange(0.0, 5.0, "m", low_open=True))
+    check_range("away", away, FieldRange(0.0, 3.0, "m"))
+    check_range("distance_beyond", distance_beyond, FieldRange(0.0, 10.0, "m", low_open=True))
+    line = push_line(door, options, offset)
+    sideways = towards_latch(door)
+    through_x, through_y = door.to_world(line, -beyond)
+    away_x, away_y = door.to_world(line + away, -max(beyond, distance_beyond))
+    through, aside, turned = PUSH_LEG_NAMES
+    return (Leg(Pose2D(through_x, through_y, sideways), through, SIDEWAYS),
+            Leg(Pose2D(away_x, away_y, sideways), aside),
+            Leg(Pose2D(away_x, away_y, door.facing_yaw), turned))

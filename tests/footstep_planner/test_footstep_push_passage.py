@@ -1,0 +1,79 @@
+"""A push door passed sideways, its back to the hinge (footstep_planner.push_passage, a study option)."""
+
+import math
+
+import pytest
+from footstep_scenes import collisions_along, door_facing_robot, kinematic_violations, profile_options
+
+from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
+from footstep_planner.astar import FootstepPlanner
+from footstep_planner.footstep import Pose2D, Stance
+from footstep_planner.goals import PUSH_LINE_CLEARANCE, push_line, push_stand_pose
+from footstep_planner.legs import plan_legs
+from footstep_planner.push_passage import PUSH_LEG_NAMES, PushPassage
+from footstep_planner.requests import GoalSettings, options_for_problem, walk_problem
+
+SIDEWAYS = GoalSettings.from_parameters({"push_passage": "sideways"})
+
+
+def test_facing_is_the_default_and_sideways_is_read_from_the_parameters() -> None:
+    assert GoalSettings().push_passage is PushPassage.FACING
+    assert SIDEWAYS.push_passage is PushPassage.SIDEWAYS
+
+
+@pytest.mark.parametrize("hinge", list(HingeSide))
+def test_the_stand_pose_is_sideways_beside_the_opening_its_back_to_the_hinge(hinge: HingeSide) -> None:
+    """Reach in front of the plane, offset towards the latch, facing along the wall towards the
+    latch; the door on the side of the hinge-side hand (the one that opens it)."""
+    options = profile_options()
+    door = door_facing_robot(DoorOpening.PUSH, hinge_side=hinge)
+    stand = push_stand_pose(door, options, reach=0.45, offset=0.05)
+    along, normal = door.to_door(stand.x, stand.y)
+    assert (along, normal) == pytest.approx((door.clear_opening / 2.0 + 0.05, 0.45))
+    heading = (math.cos(stand.yaw), math.sin(stand.yaw))
+    assert heading == pytest.approx(door.latch_direction)
+    assert heading[0] * (door.hinge_x - stand.x) + heading[1] * (door.hinge_y - stand.y) < 0.0  # hinge behind
+    left = (-heading[1], heading[0])
+    hinge_hand = 1.0 if hinge is HingeSide.LEFT else -1.0  # the robot's left hand for a left hinge
+    handle_x, handle_y = door.handle_point
+    assert hinge_hand * (left[0] * (handle_x - stand.x) + left[1] * (handle_y - stand.y)) > 0.0
+
+
+@pytest.mark.parametrize("width", [0.80, 0.90, 1.00])
+def test_the_line_keeps_the_body_box_off_the_latch_side_post(width: float) -> None:
+    options = profile_options()
+    door = door_facing_robot(DoorOpening.PUSH, leaf_width=width, clear_opening=width, handle_offset=0.07)
+    line = push_line(door, options, offset=0.12)
+    front = options.body_half_depth + options.body_offset + options.body_margin
+    assert width / 2.0 <= line <= width / 2.0 + 0.12 + 1e-12
+    assert line + front <= width - PUSH_LINE_CLEARANCE + 1e-9
+    assert push_line(door, options, offset=-0.05) == pytest.approx(width / 2.0 - 0.05)  # towards the hinge: as asked
+
+
+@pytest.mark.parametrize("hinge", list(HingeSide))
+@pytest.mark.parametrize("width", [0.80, 0.90, 1.00])
+def test_the_door_is_walked_to_and_passed_sideways_within_the_step_limits(width: float, hinge: HingeSide) -> None:
+    """Approach from 2.5 m, 0.3 m aside, turned 0.3 rad, to the sideways stand pose; then the three
+    legs: side-step through, step away from the leaf, turn to face away; clear of wall and posts."""
+    options = profile_options()
+    door = door_facing_robot(DoorOpening.PUSH, hinge_side=hinge, leaf_width=width, clear_opening=width,
+                             handle_offset=0.07)
+    start = Stance.nominal(Pose2D(-0.5, 0.3, 0.3), options.nominal_foot_separation)
+    approach = walk_problem(WalkGoal.STAND, door, start, options, SIDEWAYS)
+    walked = FootstepPlanner(approach.world, options_for_problem(approach, WalkGoal.STAND, options)).plan(
+        approach.start, approach.legs[0].goal)
+    assert walked.succeeded, walked.reason
+    assert walked.plan is not None and collisions_along(walked.plan, approach.world, options) == []
+    passage = walk_problem(WalkGoal.THROUGH, door, walked.plan.final_stance, options, SIDEWAYS)
+    assert [leg.name for leg in passage.legs] == list(PUSH_LEG_NAMES)
+    assert all(o.name.startswith(("wall", "post")) for o in passage.world.obstacles)  # the robot pushes the leaf
+    through = plan_legs(FootstepPlanner(passage.world, options_for_problem(passage, WalkGoal.THROUGH, options)),
+                        passage.start, passage.legs)
+    assert through.succeeded, through.reason
+    assert through.plan is not None
+    assert collisions_along(through.plan, passage.world, options) == []
+    assert kinematic_violations(through.plan, options) == []
+    end = through.plan.final_stance.body_pose
+    beyond = passage.door.to_door(end.x, end.y)[1]
+    assert beyond <= -SIDEWAYS.beyond_door + options.goal_position_tolerance
+    assert abs(math.remainder(end.yaw - door.facing_yaw, 2 * math.pi)) <= options.goal_yaw_tolerance
