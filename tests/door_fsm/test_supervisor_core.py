@@ -128,14 +128,14 @@ def test_a_door_whose_grasp_hand_the_robot_lacks_says_so() -> None:
 def test_the_head_search_moves_the_neck_only_while_detect_door_waits() -> None:
     """door_detection.head_search asks; the supervisor sends a look only in DETECT_DOOR's
     planning phase: not once paused (the operator can always stop the robot), not later."""
-    from trajectory_msgs.msg import JointTrajectory
+    from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
     from door_fsm import events as ev
     from door_fsm.operator_commands import OperatorCommand, OperatorWord
 
     robot = SupervisedRobot.of(load_profile("talos"))
     supervisor = _started(robot)
-    look = JointTrajectory(joint_names=["head_2_joint"])
+    look = JointTrajectory(joint_names=["head_2_joint"], points=[JointTrajectoryPoint(positions=[0.4])])
     assert supervisor.look(look) == [act.Look(look)]
     paused = _started(robot)
     paused.handle(ev.OperatorSaid(OperatorWord(OperatorCommand.PAUSE)), t(0.5))
@@ -143,3 +143,21 @@ def test_the_head_search_moves_the_neck_only_while_detect_door_waits() -> None:
     assert paused.look(look) == []
     _walk_request(supervisor)  # the door is confirmed: WALK_TO_DOOR
     assert supervisor.look(look) == []
+
+
+@pytest.mark.parametrize(("joints", "positions", "says"), [
+    (["head_2_joint"], None, "no joints or no points"),
+    ([], [], "no joints or no points"),
+    (["head_2_joint", "arm_left_1_joint"], [0.1, 0.2], "arm_left_1_joint"),
+    (["torso_1_joint"], [0.3], "torso_1_joint"),  # TALOS's torso is in its arm chains
+    (["head_2_joint"], [0.1, 0.2], "2 positions for 1 joints"),
+    (["head_2_joint"], [float("nan")], "non-finite"),
+])
+def test_a_malformed_or_arm_moving_look_is_refused_and_nothing_moves(joints, positions, says) -> None:
+    from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+
+    supervisor = _started(SupervisedRobot.of(load_profile("talos")))
+    points = [] if positions is None else [JointTrajectoryPoint(positions=positions)]
+    actions = supervisor.look(JointTrajectory(joint_names=joints, points=points))
+    assert len(actions) == 1 and isinstance(actions[0], act.Notice) and says in actions[0].text, actions
+    assert actions[0].text.startswith("look refused")

@@ -16,6 +16,7 @@ how long a footstep takes (a walk's nominal duration, which scales its execution
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -55,19 +56,41 @@ GRASP_SERVICES: dict[Side, ServiceSpec] = {Side.LEFT: Services.LEFT_GRASP, Side.
 @dataclass(frozen=True)
 class SupervisedRobot:
     """What the supervisor knows of the robot (from its profile): its name, the hands it has
-    (a side with an arm chain) and its time per footstep (s, robot clock)."""
+    (a side with an arm chain), its time per footstep (s, robot clock) and the joints of its
+    arm chains (a look may not move them)."""
 
     name: str
     hands: frozenset[Side]
     step_duration: float
+    arm_joints: frozenset[str] = frozenset()
 
     @classmethod
     def of(cls, profile: RobotProfile) -> SupervisedRobot:
-        return cls(profile.name, frozenset(Side(side) for side in profile.arms), profile.walking.step_duration)
+        arm_joints = frozenset(joint for arm in profile.arms.values() for joint in arm.joints)
+        return cls(profile.name, frozenset(Side(side) for side in profile.arms), profile.walking.step_duration,
+                   arm_joints)
 
     def grasp_services(self) -> dict[Side, ServiceSpec]:
         """The grasp services of the robot's hands."""
         return {side: spec for side, spec in GRASP_SERVICES.items() if side in self.hands}
+
+
+def look_problem(trajectory: Any, arm_joints: frozenset[str]) -> str:
+    """Why a look (a JointTrajectory) must not reach the robot, or "": no points, joints and
+    positions that do not match, a non-finite position, or an arm joint (the torso's included:
+    a head search moves the neck only)."""
+    names, points = list(trajectory.joint_names), list(trajectory.points)
+    if not names or not points:
+        return "no joints or no points"
+    moved_arm = sorted(set(names) & arm_joints)
+    if moved_arm:
+        return f"it moves {', '.join(moved_arm)} (a look moves the neck only)"
+    for point in points:
+        if len(point.positions) != len(names):
+            return f"{len(point.positions)} positions for {len(names)} joints"
+        if not all(math.isfinite(value) for value in point.positions):
+            return "a non-finite position"
+    return ""
 
 
 class Supervisor:
@@ -107,10 +130,14 @@ class Supervisor:
 
     def look(self, trajectory: Any) -> list[act.Action]:
         """The detector's neck move (``/door_detector/look``): sent to the robot only while
-        DETECT_DOOR waits for an estimate (not paused, stopped or in any other state)."""
+        DETECT_DOOR waits for an estimate (not paused, stopped or in any other state), and only
+        a well-formed one that moves no arm (:func:`look_problem`; else a notice, nothing moves)."""
         waiting = (self.machine.state is TaskState.DETECT_DOOR and self.machine.phase is Phase.PLANNING
                    and self._detection_request == self.machine.request_id)
-        return [act.Look(trajectory)] if waiting else []
+        if not waiting:
+            return []
+        problem = look_problem(trajectory, self.robot.arm_joints)
+        return [act.Notice(f"look refused: {problem}")] if problem else [act.Look(trajectory)]
 
     def proposal(self, kind: PlannerKind, message: Any, now: Instant) -> list[act.Action]:
         """A planner's proposal message (a Path or JointTrajectory), known by its stamp."""
