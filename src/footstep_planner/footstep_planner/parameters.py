@@ -36,7 +36,8 @@ PLANNER_PARAMETERS = (
                   "walks through facing the doorway, the body pushing the leaf; 'sideways' opens it standing "
                   "sideways beside the doorway, its back to the hinge, and side-steps through (a study option of "
                   "the passage rig: footstep_planner.push_passage)", choices=("facing", "sideways")),
-    ParameterSpec("push_side_reach", 0.45, "sideways push: base to door plane when opening", unit="m",
+    ParameterSpec("push_side_reach", 0.50, "sideways push: base to door plane when opening (at 0.45 the last "
+                  "steps of the walk there swayed the door-side arm into the handle)", unit="m",
                   minimum=0.2, maximum=1.5),
     ParameterSpec("push_stand_offset", 0.12, "sideways push: the stand pose and side-step line from the "
                   "opening's centre towards the latch (the leaf swings past the back)", unit="m",

@@ -104,7 +104,7 @@ class GoalSettings:
     """Push-door angle assumed while passing: the body pushes the leaf open (rad)."""
     push_passage: PushPassage = PushPassage.FACING
     """How a push door is passed (:class:`~footstep_planner.push_passage.PushPassage`; sideways is a study option)."""
-    push_side_reach: float = 0.45
+    push_side_reach: float = 0.50
     """Sideways: base to the door plane when opening a push door (m)."""
     push_stand_offset: float = 0.12
     """Sideways: the stand pose and side-step line from the opening's centre towards the latch (m)."""
