@@ -17,7 +17,17 @@ from typing import Any, TypeVar, get_type_hints
 
 from door_contract.errors import ContractError, NonFiniteError
 from door_contract.json_text import parse_bounded
-from door_contract.vocabulary import Autonomy, Backend, DetectionMode, DoorOpening, HingeSide, Motion, TaskEnd, WalkGoal
+from door_contract.vocabulary import (
+    Autonomy,
+    Backend,
+    DetectionMode,
+    DoorOpening,
+    HingeSide,
+    Motion,
+    Side,
+    TaskEnd,
+    WalkGoal,
+)
 
 Payload = TypeVar("Payload")
 
@@ -112,6 +122,7 @@ class MotionRequest:
     door_stamp: float = -1.0  # the approved DoorEstimate's stamp; < 0: the latest estimate
     door: str = ""  # the approved DoorEstimate itself (JSON), so a late-joining planner has it
     attempt: int = 0  # 0 first try, +1 per repeat of the FSM state: a repeat may use other guesses
+    hand: Side | None = None  # the grasping hand, once an approach chose it; None: the optimiser picks it
 
 
 @dataclasses.dataclass(frozen=True)

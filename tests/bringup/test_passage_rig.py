@@ -10,8 +10,11 @@ from door_bringup.passage_rig import (
     opening_hand,
     opening_sequence,
     passage_steps,
+    perfect_estimate,
+    stand_world,
 )
 from door_contract.vocabulary import DoorOpening, HingeSide, Motion, WalkGoal, grasp_hand
+from door_sim_bridge.world import DoorConfig
 
 
 def test_the_doors_are_opened_in_the_fsms_order():
@@ -52,12 +55,19 @@ def test_an_unknown_robot_is_refused():
     assert stopped.value.code == 2
 
 
-def test_a_sideways_push_door_is_opened_by_the_hinge_side_hand_else_by_the_fsms():
-    sideways = {**NODE_DEFAULTS, "push_passage": "sideways"}
+@pytest.mark.parametrize(("opening", "passage", "hinge_side_hand"), [
+    (DoorOpening.PUSH, "facing", False),    # facing, the handle 0.20 m towards the latch
+    (DoorOpening.PULL, "facing", True),     # facing, beyond the latch edge
+    (DoorOpening.PUSH, "sideways", True),   # sideways, the back to the hinge
+])
+def test_the_door_is_opened_by_the_hand_on_the_handles_side_of_each_stand_pose(opening, passage, hinge_side_hand):
+    """door_trajopt.requests.grasping_hand, as the optimiser picks it for the approach."""
+    parameters = {**NODE_DEFAULTS, "push_passage": passage}
     for hinge in HingeSide:
-        assert opening_hand(hinge, DoorOpening.PUSH, sideways) is hinge
-        assert opening_hand(hinge, DoorOpening.PUSH, NODE_DEFAULTS) is grasp_hand(hinge, DoorOpening.PUSH)
-        assert opening_hand(hinge, DoorOpening.PULL, sideways) is grasp_hand(hinge, DoorOpening.PULL)
+        with stand_world(DoorConfig(opening=opening, hinge_side=hinge), parameters=parameters) as world:
+            hand = opening_hand(world, perfect_estimate(world))
+        assert hand is (hinge if hinge_side_hand else hinge.other)
+        assert (hand is grasp_hand(hinge, opening)) is (passage == "facing")  # the FSM's rule when facing
 
 
 def test_an_unknown_push_passage_is_refused(capsys):

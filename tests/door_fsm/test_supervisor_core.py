@@ -16,7 +16,7 @@ from door_contract.payloads import (
     encode,
 )
 from door_contract.stamps import time_msg_of_ns
-from door_contract.vocabulary import Autonomy, DoorOpening, HingeSide, Side, WalkGoal
+from door_contract.vocabulary import Autonomy, DoorOpening, HingeSide, Motion, Side, WalkGoal
 from door_fsm import actions as act
 from door_fsm.graph_watch import GraphWatch
 from door_fsm.machine import MachineOptions
@@ -161,3 +161,20 @@ def test_a_malformed_or_arm_moving_look_is_refused_and_nothing_moves(joints, pos
     actions = supervisor.look(JointTrajectory(joint_names=joints, points=points))
     assert len(actions) == 1 and isinstance(actions[0], act.Notice) and says in actions[0].text, actions
     assert actions[0].text.startswith("look refused")
+
+
+def test_the_grasp_hand_is_the_arm_the_approach_moved_and_later_requests_name_it() -> None:
+    """The optimiser picks the approach's arm (the one on the handle's side); the supervisor
+    grasps with it and names it in every later motion request."""
+    robot = SupervisedRobot.of(load_profile("talos"))
+    assert robot.arm_of(["torso_1_joint", "torso_2_joint", "arm_left_1_joint", "arm_left_4_joint"]) is Side.LEFT
+    assert robot.arm_of(["torso_1_joint", "torso_2_joint"]) is None  # shared by both arms
+    assert robot.arm_of(["arm_left_1_joint", "arm_right_1_joint"]) is None
+    supervisor = _started(robot)
+    supervisor.door.approved = ESTIMATE  # hinge left, push: facing, the right hand would open it
+    assert supervisor.grasp_hand() == (Side.RIGHT, "")
+    supervisor.door.approach_hand = Side.LEFT  # sideways, its back to the hinge: the left
+    assert supervisor.grasp_hand() == (Side.LEFT, "")
+    from door_fsm import actions as fsm_actions
+    request = supervisor.door.motion_request(fsm_actions.RequestMotion(12, Motion.TURN_HANDLE, 0))
+    assert request.hand is Side.LEFT

@@ -276,7 +276,7 @@ def test_sideways_the_hinge_side_hand_opens_a_push_door_and_holds_it_with_the_ar
     with rig_stand_world(DoorConfig(opening=DoorOpening.PUSH, hinge_side=HingeSide.LEFT), robot="talos",
                          parameters=parameters) as world:
         estimate = estimate_from_world(world)
-        hand = opening_hand(estimate.hinge_side, DoorOpening.PUSH, parameters)
+        hand = opening_hand(world, estimate)
         assert hand is estimate.hinge_side
         stage, status, reason = open_door(world, kinematics, estimate, {}, hand)
         assert (stage, status) == (Motion.READY_TO_WALK.value, "success"), reason

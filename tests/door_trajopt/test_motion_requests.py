@@ -74,11 +74,21 @@ def test_an_estimate_with_a_bad_normal_is_refused(kinematics):
 def test_the_job_takes_the_grasping_arm_and_the_default_backend(kinematics):
     job = _job(kinematics, MotionRequest(8, "approach_handle", DoorOpening.PUSH), _snapshot(kinematics))
     assert job.motion is Motion.APPROACH_HANDLE and job.backend is Backend.SQP
-    assert job.side is Side.RIGHT                                  # left hinge, push: the right hand
+    assert job.side is Side.RIGHT                                  # the handle on the base's right
     assert job.start.shape == (len(job.setup.chain.joint_names),) and np.allclose(job.start, 0.0)
     chomp = _job(kinematics, MotionRequest(9, "approach_handle", DoorOpening.PUSH, backend="chomp"),
                  _snapshot(kinematics))
     assert chomp.backend is Backend.CHOMP
+
+
+def test_the_job_takes_the_hand_the_fsm_names_and_the_other_for_the_other_arms_motions(kinematics):
+    """Once an approach chose the hand, the FSM names it (after a pull door's doorway walk the
+    handle's side of the base no longer tells)."""
+    named = _job(kinematics, MotionRequest(10, "approach_handle", DoorOpening.PUSH, hand=Side.LEFT),
+                 _snapshot(kinematics))
+    assert named.side is Side.LEFT
+    tuck = _job(kinematics, MotionRequest(11, "tuck_arm", DoorOpening.PULL, hand=Side.RIGHT), _snapshot(kinematics))
+    assert tuck.side is Side.LEFT  # the blocking arm: the other one
 
 
 def test_outcome_details_without_a_plan_carry_the_stamp_only():

@@ -19,8 +19,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from door_bringup.passage_rig import motion_setup, perfect_estimate, stand_world
-from door_contract.vocabulary import DoorOpening, HingeSide, grasp_hand
+from door_bringup.passage_rig import motion_setup, opening_hand, perfect_estimate, stand_world
+from door_contract.vocabulary import DoorOpening, HingeSide
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_sim_bridge.world import DoorConfig, DoorWorld, RobotMode, StanceConfig, WorldConfig
@@ -75,7 +75,7 @@ def test_each_hand_reaches_its_grasp_at_a_push_doors_handle(robot, hinge):
     kinematics = RobotKinematics(load_profile(robot))
     with stand_world(DoorConfig(opening=DoorOpening.PUSH, hinge_side=hinge), robot=robot) as world:
         estimate = perfect_estimate(world)
-        hand = grasp_hand(estimate.hinge_side, DoorOpening.PUSH)
+        hand = opening_hand(world, estimate)
         setup = motion_setup(world, kinematics, estimate, hand, (0.0, 0.0))
     axes = kinematics.profile.arm(hand).grasp_axes
     rotation = axes.rotation_in_grasp()

@@ -14,7 +14,8 @@ The walk through is the FSM's: a push door in one walk; a pull door to the doorw
 blocking arm's tuck, and on through (:mod:`footstep_planner.pull_passage`). ``--pull-passage``,
 ``--push-passage`` and ``--tuck-at`` are the footstep planner's parameters of those names, for
 studies (``--push-passage sideways``: the push door opened and passed sideways, its back to the
-hinge, by the hinge-side hand: :mod:`footstep_planner.push_passage`).
+hinge: :mod:`footstep_planner.push_passage`). The hand is the optimiser node's: the arm on the
+handle's side.
 
     python -m door_bringup.passage_rig --robot g1 --openings push pull --hinges left right --trials 3
     python -m door_bringup.passage_rig --openings pull --trials 5 --tuck-at 0.5
@@ -35,7 +36,7 @@ from door_bringup.robot_option import add_robot_argument, check_robot
 from door_contract.errors import ParameterRangeError
 from door_contract.parameters import validate_all
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
-from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeSide, Motion, Side, WalkGoal, grasp_hand
+from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeSide, Motion, Side, WalkGoal
 from door_fsm.states import TaskState
 from door_fsm.wiring import WiringError, success_sequence
 from door_fsm.work import STATE_WORK, WorkKind
@@ -47,6 +48,7 @@ from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import MotionLibrary
 from door_trajopt.motions import MotionSetup, start_door_for, support_polygon
+from door_trajopt.requests import grasping_hand
 from footstep_planner.narrow import PullPassage
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import PLANNER_PARAMETERS
@@ -167,12 +169,10 @@ def run_recording(world: DoorWorld, execution: FootstepExecution | TrajectoryExe
     return execution.result
 
 
-def opening_hand(hinge: HingeSide, opening: DoorOpening, parameters: Mapping[str, object]) -> Side:
-    """The hand that opens the door: the FSM's (:func:`~door_contract.vocabulary.grasp_hand`),
-    but the hinge-side one when the planner's ``push_passage`` opens a push door sideways (the
-    door is on that hand's side: :mod:`footstep_planner.push_passage`)."""
-    sideways = GoalSettings.from_parameters(parameters).push_passage is PushPassage.SIDEWAYS
-    return hinge if opening is DoorOpening.PUSH and sideways else grasp_hand(hinge, opening)
+def opening_hand(world: DoorWorld, estimate: DoorEstimate) -> Side:
+    """The hand that opens the door, as the trajectory optimiser node picks it: the arm on the
+    handle's side of the base (:func:`door_trajopt.requests.grasping_hand`)."""
+    return grasping_hand(estimate, world.base_pose())
 
 
 def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate,
@@ -226,15 +226,15 @@ def _walk_or_motion(target: WalkGoal | Motion | None) -> WalkGoal | Motion:
 
 
 def walk_through(world: DoorWorld, estimate: DoorEstimate, kinematics: RobotKinematics,
-                 parameters: Mapping[str, object]) -> tuple[str, str, str, dict[str, float]]:
+                 parameters: Mapping[str, object], hand: Side) -> tuple[str, str, str, dict[str, float]]:
     """The passage as the FSM runs it (:func:`passage_steps`), each walk planned from the
     measured feet with the footstep planner node's calls and ``parameters``, each motion with
-    the motion library: (stage, status, reason, peak contact forces), the stage
-    :data:`WALKED_THROUGH` or the step that did not succeed."""
+    the motion library for ``hand`` (the opening's; the FSM names it in its requests):
+    (stage, status, reason, peak contact forces), the stage :data:`WALKED_THROUGH` or the step
+    that did not succeed."""
     settings = GoalSettings.from_parameters(parameters)
     options = planner_options(world.config.robot_profile, parameters)
     planners, library, peaks = WalkPlanners(), MotionLibrary(), dict[str, float]()
-    hand = opening_hand(estimate.hinge_side, world.config.door.opening, parameters)
     for step in passage_steps(world.config.door.opening):
         if isinstance(step, Motion):
             status, reason, _ = run_motion(world, kinematics, estimate, step, library,
@@ -279,10 +279,10 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
                      robot, parameters) as world:
         estimate = perfect_estimate(world)
         peaks: dict[str, float] = {}
-        stage, status, reason = open_door(world, kinematics, estimate, peaks,
-                                          opening_hand(hinge, opening, parameters))
+        hand = opening_hand(world, estimate)  # at the stand pose, as the approach picks it
+        stage, status, reason = open_door(world, kinematics, estimate, peaks, hand)
         if status == "success":  # the walk's contacts are the ones that matter then
-            stage, status, reason, peaks = walk_through(world, estimate, kinematics, parameters)
+            stage, status, reason, peaks = walk_through(world, estimate, kinematics, parameters, hand)
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
         return PassageRun(robot, opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle,
                           strikes)

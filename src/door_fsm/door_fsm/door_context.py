@@ -22,6 +22,7 @@ class DoorContext:
     approved: DoorEstimate | None = None
     angle: float = 0.0          # rad, as left by the last executed door motion
     planned_angle: float = 0.0  # rad, at the end of the motion being executed
+    approach_hand: Side | None = None  # the arm of the last proposed approach (the optimiser's choice)
 
     def footstep_request(self, action: act.RequestFootsteps) -> FootstepRequest:
         return FootstepRequest(action.request_id, action.goal, self.opening, self.angle,
@@ -29,9 +30,14 @@ class DoorContext:
 
     def motion_request(self, action: act.RequestMotion) -> MotionRequest:
         return MotionRequest(action.request_id, action.motion, self.opening, self.backend, self.angle,
-                             self._approved_stamp(), self._approved_json(), attempt=action.attempt)
+                             self._approved_stamp(), self._approved_json(), attempt=action.attempt,
+                             hand=self.approach_hand)
 
     def grasp_hand(self) -> Side:
+        """The hand the approach moved (the optimiser picks the arm on the handle's side:
+        :func:`door_trajopt.requests.grasping_hand`), else the one a facing robot opens with."""
+        if self.approach_hand is not None:
+            return self.approach_hand
         door = self.approved or self.latest
         return grasp_hand(door.hinge_side, self.opening) if door else Side.RIGHT
 

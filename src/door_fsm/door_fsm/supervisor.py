@@ -17,7 +17,7 @@ how long a footstep takes (a walk's nominal duration, which scales its execution
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -56,19 +56,31 @@ GRASP_SERVICES: dict[Side, ServiceSpec] = {Side.LEFT: Services.LEFT_GRASP, Side.
 @dataclass(frozen=True)
 class SupervisedRobot:
     """What the supervisor knows of the robot (from its profile): its name, the hands it has
-    (a side with an arm chain), its time per footstep (s, robot clock) and the joints of its
-    arm chains (a look may not move them)."""
+    (a side with an arm chain), its time per footstep (s, robot clock) and the joints of each
+    arm chain (a look may not move them; an approach's joints say which hand it moves)."""
 
     name: str
     hands: frozenset[Side]
     step_duration: float
-    arm_joints: frozenset[str] = frozenset()
+    arms: tuple[tuple[Side, frozenset[str]], ...] = ()
 
     @classmethod
     def of(cls, profile: RobotProfile) -> SupervisedRobot:
-        arm_joints = frozenset(joint for arm in profile.arms.values() for joint in arm.joints)
-        return cls(profile.name, frozenset(Side(side) for side in profile.arms), profile.walking.step_duration,
-                   arm_joints)
+        arms = tuple((Side(side), frozenset(arm.joints)) for side, arm in profile.arms.items())
+        return cls(profile.name, frozenset(side for side, _ in arms), profile.walking.step_duration, arms)
+
+    @property
+    def arm_joints(self) -> frozenset[str]:
+        """Every joint of every arm chain (TALOS's torso included)."""
+        return frozenset().union(*(joints for _, joints in self.arms))
+
+    def arm_of(self, joint_names: Sequence[str]) -> Side | None:
+        """The arm a trajectory over ``joint_names`` moves: the one whose own joints (not shared
+        with another arm, as the torso is) it names; None when none or both."""
+        named = set(joint_names)
+        moved = [side for side, joints in self.arms
+                 if named & (joints - frozenset().union(*(other for s, other in self.arms if s is not side)))]
+        return moved[0] if len(moved) == 1 else None
 
     def grasp_services(self) -> dict[Side, ServiceSpec]:
         """The grasp services of the robot's hands."""
@@ -234,4 +246,6 @@ class Supervisor:
             return []
         if isinstance(answer, Proposal):
             self.door.planned(answer.outcome)
+            if self.machine.state is TaskState.MOVE_TO_HANDLE:  # the optimiser chose the hand
+                self.door.approach_hand = self.robot.arm_of(getattr(answer.message, "joint_names", ()))
         return self.handle(planning_event(answer), now)

@@ -16,7 +16,7 @@ import numpy as np
 
 from door_contract.door_estimates import requested_estimate_problem
 from door_contract.payloads import DoorEstimate, MotionRequest
-from door_contract.vocabulary import Backend, DoorOpening, Motion, Side, grasp_hand
+from door_contract.vocabulary import Backend, DoorOpening, Motion, Side
 from door_robot.kinematics import RobotKinematics
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
@@ -57,8 +57,10 @@ class MotionJob:
 def motion_job(request: MotionRequest, snapshot: Snapshot, kinematics: RobotKinematics, options: MotionOptions,
                default_backend: Backend, lever_radius: float) -> MotionJob:
     """The library job of ``request``: raises :class:`PlanningRefused` naming what is wrong or
-    missing. The grasping arm follows from the hinge side and opening; motions that use the
-    other arm (blocking the door) take the other one."""
+    missing. The grasping arm is the request's (the FSM names the one its approach moved), or,
+    for the approach, the one on the handle's side (:func:`grasping_hand`: after a pull door's
+    doorway walk the robot faces the hinge and that rule no longer holds); motions that use the
+    other arm (blocking the door, tucking) take the other one."""
     motion = Motion(request.motion)  # decoding the request refused any other
     estimate = snapshot.estimate
     problem = requested_estimate_problem(estimate, request.door_stamp)
@@ -69,7 +71,7 @@ def motion_job(request: MotionRequest, snapshot: Snapshot, kinematics: RobotKine
     backend = Backend(request.backend or default_backend)
     known = kinematics.joint_names
     body_q = kinematics.configuration({k: v for k, v in snapshot.joint_positions.items() if k in known})
-    hand = grasp_hand(estimate.hinge_side, request.opening)
+    hand = request.hand or grasping_hand(estimate, snapshot.base_pose)
     side = hand.other if motion.uses_other_arm else hand
     chain = ArmChain(kinematics, side, body_q)
     door = door_model_from_estimate(estimate, np.linalg.inv(snapshot.base_pose),
@@ -77,6 +79,17 @@ def motion_job(request: MotionRequest, snapshot: Snapshot, kinematics: RobotKine
     setup = MotionSetup(chain, door, estimate.width, support_polygon(chain),
                         start_door_for(motion, request.door_angle, options))
     return MotionJob(motion, backend, side, setup, chain.chain_of(body_q))
+
+
+def grasping_hand(estimate: DoorEstimate, base_pose: np.ndarray) -> Side:
+    """The arm on the handle's side of the base (the handle's y in the base frame, ``base_pose``
+    4×4 in the estimate's frame): the latch-side hand of a robot facing a push door from its
+    stand pose (the handle 0.20 m towards the latch), the hinge-side hand of one facing a pull
+    door from beyond its latch edge, and the hinge-side hand of one standing sideways, its back
+    to the hinge (:mod:`footstep_planner.push_passage`) — whatever the stance, the hand nearest
+    the handle."""
+    handle = np.linalg.inv(base_pose) @ np.append(np.asarray(estimate.handle_position, dtype=float), 1.0)
+    return Side.LEFT if handle[1] >= 0.0 else Side.RIGHT
 
 
 def outcome_details(plan: MotionPlan | None, backend: str, proposal_stamp_ns: int = -1) -> dict[str, Any]:
