@@ -21,6 +21,17 @@ def test_facing_is_the_default_and_sideways_is_read_from_the_parameters() -> Non
     assert SIDEWAYS.push_passage is PushPassage.SIDEWAYS
 
 
+def test_from_anywhere_but_the_stand_pose_the_passage_first_walks_to_its_line() -> None:
+    options = profile_options()
+    door = door_facing_robot(DoorOpening.PUSH)
+    elsewhere = Stance.nominal(Pose2D(1.4, 0.0, 0.0), options.nominal_foot_separation)  # facing, 0.6 m out
+    problem = walk_problem(WalkGoal.THROUGH, door, elsewhere, options, SIDEWAYS)
+    assert [leg.name for leg in problem.legs] == ["to the side-step line", *PUSH_LEG_NAMES]
+    through = plan_legs(FootstepPlanner(problem.world, options_for_problem(problem, WalkGoal.THROUGH, options)),
+                        problem.start, problem.legs)
+    assert through.succeeded, through.reason
+
+
 @pytest.mark.parametrize("hinge", list(HingeSide))
 def test_the_stand_pose_is_sideways_beside_the_opening_its_back_to_the_hinge(hinge: HingeSide) -> None:
     """Reach in front of the plane, offset towards the latch, facing along the wall towards the

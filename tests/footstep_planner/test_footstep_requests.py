@@ -75,7 +75,8 @@ def test_each_goal_has_its_legs_and_snapping() -> None:
     narrow = door_facing_robot(DoorOpening.PULL, leaf_width=0.8, clear_opening=0.8, handle_offset=0.07)
     narrow_pull = walk_problem(WalkGoal.THROUGH, narrow, _start(options), options, facing)
     assert [leg.name for leg in narrow_pull.legs][:2] == list(PULL_LEG_NAMES[:2]) and len(narrow_pull.legs) == 5
-    push = walk_problem(WalkGoal.THROUGH, door_facing_robot(DoorOpening.PUSH), _start(options), options, SETTINGS)
+    facing_push = GoalSettings.from_parameters({"push_passage": "facing"})
+    push = walk_problem(WalkGoal.THROUGH, door_facing_robot(DoorOpening.PUSH), _start(options), options, facing_push)
     assert len(push.legs) == 1 and push.door.angle == SETTINGS.passage_door_angle
     assert options_for_problem(push, WalkGoal.THROUGH, options) is options
     stand = walk_problem(WalkGoal.STAND, door_facing_robot(DoorOpening.PUSH), _start(options), options, SETTINGS)

@@ -26,13 +26,15 @@ The leaf is no obstacle of these legs (the robot pushes it); wall and posts are.
 **A study option** (``push_passage: sideways``; the default is ``facing``,
 :func:`~footstep_planner.narrow.passage_legs` around the leaf at ``passage_door_angle``). The
 passage rig, placed at the stand pose (10 jittered trials per hinge): 12 of 20 doors through,
-at reach 0.45 and at 0.50, against 0 of 20 facing (issue #11). Not yet the graph's: the FSM
-and the optimiser take the latch-side hand for a push door
-(:func:`door_contract.vocabulary.grasp_hand`); and side-stepping sways the body ±10 cm along
-the walk, so the hand on the leaf bangs it (200-700 N) while the leaf is below ~0.9 rad. Walked
-to the stand pose from 2.5 m at reach 0.45, the last steps swayed the door-side arm into the
-handle 6 cm away (1 fall in 6); at 0.50 every walk there and every opening succeeded (8/8), and
-3 of the 8 went through.
+at reach 0.45 and at 0.50, against 0 of 20 facing (issue #11); walked there from 2.5 m, from
+0.50 every walk and opening succeeded (8/8) and 3 of the 8 went through (from 0.45 the last
+steps swayed the door-side arm into the handle 6 cm away: 1 fall in 6). The graph runs it (the
+optimiser picks the arm on the handle's side, the FSM grasps with the approach's arm and names
+it in later requests), but not well enough to be the default: the hand reaches the handle
+near full stretch, and an estimate 1 cm off along the wall or in height, or 1.5° off in its
+normal, failed the turn or the push in 7 of 8 rig doors; through the graph the turn slipped in
+2 of 2 runs. And side-stepping sways the body ±10 cm along the walk, so the hand on the leaf
+bangs it (200-700 N) while the leaf is below ~0.9 rad.
 """
 
 from __future__ import annotations

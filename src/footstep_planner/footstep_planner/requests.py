@@ -29,7 +29,7 @@ from footstep_planner.legs import Leg, plan_legs
 from footstep_planner.narrow import PullPassage, passage_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import PlanResult
-from footstep_planner.pull_passage import doorway_legs, in_doorway, onward_legs, pull_passage_legs
+from footstep_planner.pull_passage import DOORWAY_REACHED, doorway_legs, in_doorway, onward_legs, pull_passage_legs
 from footstep_planner.push_passage import PushPassage, push_passage_legs
 from footstep_planner.robot_limits import options_for_walking, planner_options
 from footstep_planner.world import World
@@ -199,6 +199,10 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
     if settings.push_passage is PushPassage.SIDEWAYS:
         legs = push_passage_legs(door, options, settings.push_stand_offset, settings.push_side_beyond,
                                  settings.push_step_away, settings.beyond_door)
+        stand = stand_pose(door, options, settings)
+        near, turned = DOORWAY_REACHED
+        if start.body_pose.distance_to(stand) > near or start.body_pose.yaw_difference(stand) > turned:
+            legs = (Leg(stand, "to the side-step line"), *legs)  # from anywhere but where it opened the door
         return WalkProblem(start, legs, World(wall_obstacles(door)), door)
     door = door.with_angle(passage_angle(door.angle, settings))
     return WalkProblem(start, passage_legs(door, options, settings.beyond_door), World.from_door(door), door)
