@@ -31,6 +31,7 @@ from pathlib import Path
 
 import numpy as np
 
+from door_bringup.domains import lease_domain
 from door_bringup.door_task import TaskOptions, run_task
 from door_bringup.interrupts import interrupt_on_sigterm
 from door_bringup.robot_option import add_robot_argument, check_robot
@@ -156,12 +157,9 @@ def run_trials(trials: list[TaskOptions], out: Path, workspace: Workspace, jobs:
         for index in pending:
             finished(index, run_trial(trials[index], out / f"trial_{index:03d}", workspace))
     else:
-        domains: multiprocessing.Queue = multiprocessing.get_context("spawn").Queue()
-        first = int(os.environ.get("ROS_DOMAIN_ID", "0") or 0)
-        for offset in range(1, jobs + 1):
-            domains.put((first + offset) % 233)  # the domain ids DDS allows on one host
+        first = int(os.environ.get("ROS_DOMAIN_ID", "0") or 0) + 1  # the campaign's own stays free
         with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
-                                 initializer=_take_domain, initargs=(domains,)) as pool:
+                                 initializer=_take_domain, initargs=(first,)) as pool:
             futures = {pool.submit(_run_in_worker, trials[index], out / f"trial_{index:03d}", workspace): index
                        for index in pending}
             try:
@@ -177,10 +175,12 @@ def run_trials(trials: list[TaskOptions], out: Path, workspace: Workspace, jobs:
     return [reports[index] for index in range(len(trials))]
 
 
-def _take_domain(domains: multiprocessing.Queue) -> None:
-    """A pool worker's ROS domain, for good: its graphs never share DDS with another worker's.
-    A SIGTERM stops the worker's graph (:mod:`door_bringup.interrupts`)."""
-    os.environ["ROS_DOMAIN_ID"] = str(domains.get())
+def _take_domain(first: int) -> None:
+    """A pool worker's ROS domain, for good: the first id from ``first`` that no process on the
+    host has leased (:func:`door_bringup.domains.lease_domain`; the lease lasts as long as the
+    worker), so its graphs never share DDS with another worker's, another campaign's or a main
+    job's that leased one. A SIGTERM stops the worker's graph (:mod:`door_bringup.interrupts`)."""
+    os.environ["ROS_DOMAIN_ID"] = str(lease_domain(first).domain)
     interrupt_on_sigterm()
 
 
