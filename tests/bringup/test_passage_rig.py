@@ -74,3 +74,22 @@ def test_an_unknown_push_passage_is_refused(capsys):
     with pytest.raises(SystemExit) as stopped:
         main(["--push-passage", "diagonal"])
     assert stopped.value.code == 2 and "push-passage" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("distance", ["0.2", "nan", "9"])
+def test_a_walk_from_outside_its_range_is_refused(distance, capsys):
+    with pytest.raises(SystemExit) as stopped:
+        main(["--walk-from", distance])
+    assert stopped.value.code == 2 and "--walk-from" in capsys.readouterr().err
+
+
+@pytest.mark.slow
+def test_walked_to_the_stand_pose_the_robot_opens_the_door_and_walks_through_it():
+    """--walk-from: as in the graph, the walk to the stand pose comes first (it ends at rest);
+    then the opening, then the passage (which may fall: issue #11)."""
+    from door_bringup.passage_rig import WALKED_THROUGH, run_door
+    from door_robot.kinematics import RobotKinematics
+    from door_robot.profile import load_profile
+
+    run = run_door(DoorOpening.PUSH, HingeSide.LEFT, 0, RobotKinematics(load_profile("talos")), walk_from=1.5)
+    assert run.stage == WALKED_THROUGH, run.line()

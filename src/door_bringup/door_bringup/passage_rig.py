@@ -20,6 +20,10 @@ handle's side.
     python -m door_bringup.passage_rig --robot g1 --openings push pull --hinges left right --trials 3
     python -m door_bringup.passage_rig --openings pull --trials 5 --tuck-at 0.5
     python -m door_bringup.passage_rig --openings push --trials 10 --push-passage sideways
+    python -m door_bringup.passage_rig --openings push --walk-from 2.5 --trials 4
+
+``--walk-from M`` starts the robot M m in front of the door and walks it to the stand pose
+first, as the graph does (the walk's landing and sway matter: the rig's placed robot hid them).
 """
 
 from __future__ import annotations
@@ -81,6 +85,8 @@ class HandCommand(str, Enum):
 
 WALKED_THROUGH = "walk through"
 """The stage of a door whose last walk ran (to its end, or to a fall)."""
+WALK_TO_DOOR = "walk to the door"
+"""The stage of a door whose walk to the stand pose did not succeed (``--walk-from``)."""
 
 
 @dataclass(frozen=True)
@@ -268,21 +274,35 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
 
 
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
-             planner_parameters: Mapping[str, object] | None = None) -> PassageRun:
-    """One door, its stand pose jittered by ``trial`` (0: none), for the robot of ``kinematics``;
-    the passage planned with the footstep planner node's defaults updated by ``planner_parameters``."""
+             planner_parameters: Mapping[str, object] | None = None, walk_from: float | None = None) -> PassageRun:
+    """One door for the robot of ``kinematics``, the passage planned with the footstep planner
+    node's defaults updated by ``planner_parameters``. The robot starts at the stand pose
+    jittered by ``trial`` (0: none), or, with ``walk_from`` (m), that far in front of the door
+    and walks to the stand pose first, as in the graph (``trial`` > 0: up to ±0.3 m aside and
+    ±0.3 rad turned)."""
     rng = np.random.default_rng(trial)
-    jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
     robot = kinematics.profile.name
     parameters = {**NODE_DEFAULTS, **(planner_parameters or {})}
-    with stand_world(DoorConfig(opening=opening, hinge_side=hinge), (jitter[0], jitter[1], jitter[2]),
-                     robot, parameters) as world:
+    door = DoorConfig(opening=opening, hinge_side=hinge)
+    peaks: dict[str, float] = {}
+    if walk_from is None:
+        jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
+        world = stand_world(door, (jitter[0], jitter[1], jitter[2]), robot, parameters)
+    else:
+        aside, turned = (0.0, 0.0) if trial == 0 else tuple(rng.uniform(-0.3, 0.3, 2))
+        world = DoorWorld(WorldConfig(robot_profile=robot, door=door,
+                                      stance=StanceConfig(distance=walk_from, lateral_offset=aside, yaw=turned)))
+    with world:
         estimate = perfect_estimate(world)
-        peaks: dict[str, float] = {}
-        hand = opening_hand(world, estimate)  # at the stand pose, as the approach picks it
-        stage, status, reason = open_door(world, kinematics, estimate, peaks, hand)
-        if status == "success":  # the walk's contacts are the ones that matter then
-            stage, status, reason, peaks = walk_through(world, estimate, kinematics, parameters, hand)
+        stage, status, reason = WALK_TO_DOOR, "success", ""
+        if walk_from is not None:
+            status, reason = _walk(world, estimate, WalkGoal.STAND, WalkPlanners(),
+                                   planner_options(robot, parameters), GoalSettings.from_parameters(parameters), peaks)
+        if status == "success":
+            hand = opening_hand(world, estimate)  # at the stand pose, as the approach picks it
+            stage, status, reason = open_door(world, kinematics, estimate, peaks, hand)
+            if status == "success":  # the walk's contacts are the ones that matter then
+                stage, status, reason, peaks = walk_through(world, estimate, kinematics, parameters, hand)
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
         return PassageRun(robot, opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle,
                           strikes)
@@ -299,11 +319,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--push-passage", choices=[p.value for p in PushPassage],
                         default=NODE_DEFAULTS["push_passage"],
                         help="the footstep planner's push_passage (sideways: a study option, footstep_planner.push_passage)")
+    parser.add_argument("--walk-from", type=float, default=None, metavar="M",
+                        help="start M m in front of the door (0.8-8) and walk to the stand pose first, as in "
+                             "the graph (trials > 0: up to 0.3 m aside and 0.3 rad turned); default: start there")
     parser.add_argument("--tuck-at", type=float, default=NODE_DEFAULTS["tuck_at"],
                         help="the footstep planner's tuck_at: the doorway walk ends this far before the door plane (m)")
     args = parser.parse_args(argv)
     if args.trials < 1:
         parser.error("--trials must be at least 1")
+    if args.walk_from is not None and not 0.8 <= args.walk_from <= 8.0:
+        parser.error(f"--walk-from must be within [0.8, 8] m, got {args.walk_from!r}")
     overrides = {"pull_passage": args.pull_passage, "push_passage": args.push_passage, "tuck_at": args.tuck_at}
     try:
         validate_all(PLANNER_PARAMETERS, overrides)
@@ -315,7 +340,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     for opening in args.openings:
         for hinge in args.hinges:
             for trial in range(args.trials):
-                runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics, overrides))
+                runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics, overrides,
+                                     args.walk_from))
                 print(runs[-1].line(), flush=True)
     through = sum(run.stage == WALKED_THROUGH and run.status == "success" for run in runs)
     fell = sum(run.status == OutcomeStatus.FELL.value for run in runs)
