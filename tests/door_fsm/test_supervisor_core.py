@@ -146,12 +146,12 @@ def test_the_head_search_moves_the_neck_only_while_detect_door_waits() -> None:
 
 
 @pytest.mark.parametrize(("joints", "positions", "says"), [
-    (["head_2_joint"], None, "no joints or no points"),
-    ([], [], "no joints or no points"),
+    (["head_2_joint"], None, "trajectory has no points"),
+    ([], [], "no joints"),
     (["head_2_joint", "arm_left_1_joint"], [0.1, 0.2], "arm_left_1_joint"),
     (["torso_1_joint"], [0.3], "torso_1_joint"),  # TALOS's torso is in its arm chains
-    (["head_2_joint"], [0.1, 0.2], "2 positions for 1 joints"),
-    (["head_2_joint"], [float("nan")], "non-finite"),
+    (["head_2_joint"], [0.1, 0.2], "every point needs 1 positions"),
+    (["head_2_joint"], [float("nan")], "NaN or infinity"),
 ])
 def test_a_malformed_or_arm_moving_look_is_refused_and_nothing_moves(joints, positions, says) -> None:
     from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint

@@ -16,11 +16,11 @@ how long a footstep takes (a walk's nominal duration, which scales its execution
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
+from door_contract.converters.trajectory import msg_to_joint_path
 from door_contract.errors import ContractError
 from door_contract.payloads import (
     ExecutionOutcome,
@@ -88,20 +88,19 @@ class SupervisedRobot:
 
 
 def look_problem(trajectory: Any, arm_joints: frozenset[str]) -> str:
-    """Why a look (a JointTrajectory) must not reach the robot, or "": no points, joints and
-    positions that do not match, a non-finite position, or an arm joint (the torso's included:
-    a head search moves the neck only)."""
-    names, points = list(trajectory.joint_names), list(trajectory.points)
-    if not names or not points:
-        return "no joints or no points"
-    moved_arm = sorted(set(names) & arm_joints)
+    """Why a look (a JointTrajectory) must not reach the robot, or "": no joints, a trajectory
+    the contract's converter refuses (:func:`~door_contract.converters.trajectory.msg_to_joint_path`:
+    no points, positions that do not match the joints, non-finite values, times not
+    increasing), or an arm joint (the torso's included: a head search moves the neck only)."""
+    if not trajectory.joint_names:
+        return "no joints"
+    moved_arm = sorted(set(trajectory.joint_names) & arm_joints)
     if moved_arm:
         return f"it moves {', '.join(moved_arm)} (a look moves the neck only)"
-    for point in points:
-        if len(point.positions) != len(names):
-            return f"{len(point.positions)} positions for {len(names)} joints"
-        if not all(math.isfinite(value) for value in point.positions):
-            return "a non-finite position"
+    try:
+        msg_to_joint_path(trajectory)
+    except ContractError as error:
+        return str(error)
     return ""
 
 
