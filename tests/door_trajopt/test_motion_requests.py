@@ -91,6 +91,14 @@ def test_the_job_takes_the_hand_the_fsm_names_and_the_other_for_the_other_arms_m
     assert tuck.side is Side.LEFT  # the blocking arm: the other one
 
 
+def test_a_request_naming_an_unknown_hand_is_refused_by_the_contract_and_a_known_one_decodes():
+    text = encode(MotionRequest(1, Motion.TURN_HANDLE, DoorOpening.PUSH, hand=Side.LEFT))
+    assert decode(MotionRequest, text).hand is Side.LEFT
+    assert decode(MotionRequest, encode(MotionRequest(1, Motion.TURN_HANDLE, DoorOpening.PUSH))).hand is None
+    with pytest.raises(ContractError, match="unknown hand 'middle'; use one of"):
+        decode(MotionRequest, json.dumps(json.loads(text) | {"hand": "middle"}))
+
+
 def test_outcome_details_without_a_plan_carry_the_stamp_only():
     assert outcome_details(None, "sqp", 42) == {"stamp_ns": 42}
 
