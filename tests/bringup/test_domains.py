@@ -41,7 +41,16 @@ def test_ids_wrap_around_and_run_out_with_a_clear_error(tmp_path) -> None:
     leases = [lease_domain(DOMAIN_COUNT - 1, tmp_path) for _ in range(DOMAIN_COUNT)]
     assert leases[0].domain == DOMAIN_COUNT - 1 and leases[1].domain == 0
     assert sorted(lease.domain for lease in leases) == list(range(DOMAIN_COUNT))
-    with pytest.raises(DomainsExhausted, match="all 233 ROS domain ids are leased"):
+    with pytest.raises(DomainsExhausted, match="every ROS domain id in 0..232 is leased"):
         lease_domain(0, tmp_path)
     for lease in leases:
+        lease.release()
+
+
+def test_a_lease_can_be_bounded_to_a_range_of_ids(tmp_path) -> None:
+    held = [lease_domain(10, tmp_path, count=2) for _ in range(2)]
+    assert [lease.domain for lease in held] == [10, 11]
+    with pytest.raises(DomainsExhausted, match="every ROS domain id in 10..11 is leased"):
+        lease_domain(10, tmp_path, count=2)
+    for lease in held:
         lease.release()

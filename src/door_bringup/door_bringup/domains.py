@@ -46,10 +46,11 @@ def default_lock_directory() -> Path:
     return directory
 
 
-def lease_domain(first: int, directory: Path | None = None) -> DomainLease:
-    """The first id from ``first`` (modulo :data:`DOMAIN_COUNT`) no other lease holds."""
+def lease_domain(first: int, directory: Path | None = None, count: int = DOMAIN_COUNT) -> DomainLease:
+    """The first of the ``count`` ids from ``first`` (modulo :data:`DOMAIN_COUNT`) no other
+    lease holds (the test session's and every Monte-Carlo worker's share these locks)."""
     folder = default_lock_directory() if directory is None else directory
-    for offset in range(DOMAIN_COUNT):
+    for offset in range(min(count, DOMAIN_COUNT)):
         domain = (first + offset) % DOMAIN_COUNT
         fd = os.open(folder / f"{domain}.lock", os.O_CREAT | os.O_RDWR, 0o644)
         try:
@@ -58,4 +59,5 @@ def lease_domain(first: int, directory: Path | None = None) -> DomainLease:
             os.close(fd)
             continue
         return DomainLease(domain, fd)
-    raise DomainsExhausted(f"all {DOMAIN_COUNT} ROS domain ids are leased (lock files in {folder})")
+    last = (first + min(count, DOMAIN_COUNT) - 1) % DOMAIN_COUNT
+    raise DomainsExhausted(f"every ROS domain id in {first}..{last} is leased (lock files in {folder})")
