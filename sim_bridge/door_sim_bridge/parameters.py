@@ -32,6 +32,9 @@ BRIDGE_PARAMETERS = (
                   minimum=0.0, maximum=50.0),
     ParameterSpec("grasp_break_force", 200.0, "grasp constraint force beyond which the hand slips",
                   unit="N", minimum=10.0, maximum=5000.0),
+    ParameterSpec("grasp_model", "compliant", "how a closed hand holds the lever: at a point, free to turn "
+                  "about it (compliant), or locked in orientation, sliding along the lever (rigid)",
+                  choices=("compliant", "rigid")),
     ParameterSpec("stance_distance", 3.0, "robot base to the door plane at the start", unit="m",
                   minimum=0.5, maximum=6.0),
     ParameterSpec("stance_lateral", 0.0, "robot lateral offset from the doorway centre", unit="m",

@@ -104,3 +104,17 @@ def test_the_bridge_maps_its_appearance_parameters_onto_the_world():
     assert defaults.camera.light_direction == CameraConfig().light_direction
     with pytest.raises(SimulationError, match="DoorConfig.handle_colour"):
         world_config(validate_all(BRIDGE_PARAMETERS, {"handle_colour": [0.5, 2.0, 0.5]}))
+
+
+def test_the_bridge_maps_its_grasp_model_onto_the_world_and_refuses_an_unknown_one():
+    from door_contract.errors import ParameterRangeError
+    from door_contract.parameters import validate_all
+    from door_sim_bridge.parameters import BRIDGE_PARAMETERS
+    from door_sim_bridge.world import GraspModel
+    from door_sim_bridge.world_parameters import world_config
+
+    assert world_config(validate_all(BRIDGE_PARAMETERS, {})).grasp_model is GraspModel.COMPLIANT
+    rigid = world_config(validate_all(BRIDGE_PARAMETERS, {"grasp_model": "rigid"}))
+    assert rigid.grasp_model is GraspModel.RIGID
+    with pytest.raises(ParameterRangeError, match="grasp_model"):
+        validate_all(BRIDGE_PARAMETERS, {"grasp_model": "ball"})

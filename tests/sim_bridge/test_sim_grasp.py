@@ -9,7 +9,8 @@ from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_sim_bridge.execution import TrajectoryExecution
-from door_sim_bridge.world import DoorWorld, EventKind, RobotMode, WorldConfig
+from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.world import DoorWorld, EventKind, GraspModel, RobotMode, WorldConfig
 from door_sim_bridge.world.transforms import translation
 
 HAND = Side.RIGHT  # the default door is hinged on the left: its handle is on the robot's right
@@ -124,3 +125,33 @@ def _pull_the_hand_off(world, kinematics):
     assert result.status is OutcomeStatus.FAILURE and "right grasp slipped" in result.reason
     assert result.duration_s < 1.0
     assert world.slipped(HAND) and positions != world.joint_positions()
+
+
+def _turn_the_hand_about_its_grasp(model: GraspModel, kinematics) -> tuple[OutcomeStatus, float]:
+    """Grasp, then turn the hand 5° about the vertical through its TCP, as a turn planned on a
+    lever axis a few degrees off drifts: (the outcome, the grasp's peak force)."""
+    config = WorldConfig(stance=GRASP_STANCE, posture_overrides=manipulation_posture(), grasp_model=model)
+    with DoorWorld(config) as world:
+        reach_handle(world, kinematics, HAND)
+        assert world.grasp(HAND, close=True).success
+        target = world.tcp_pose(HAND).copy()
+        c, s = np.cos(np.radians(5.0)), np.sin(np.radians(5.0))
+        target[:3, :3] = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]) @ target[:3, :3]
+        names, q = solve_ik(world, kinematics, HAND, target)
+        result = TrajectoryExecution(world, [1.5], names, [q[kinematics.arm_indices(HAND)]]).run()
+        return result.status, world.peak_grasp_force(HAND)
+
+
+def test_a_compliant_grip_lets_the_hand_turn_about_the_lever_and_a_rigid_one_fights_it(kinematics):
+    """The compliant hand passes forces, not torques: a hand turned about its grasp follows its
+    command with the lever held; locked in orientation, the arm is held off or slips."""
+    status, force = _turn_the_hand_about_its_grasp(GraspModel.COMPLIANT, kinematics)
+    assert status is OutcomeStatus.SUCCESS and force < 0.5 * WorldConfig().grasp_break_force
+    status, force = _turn_the_hand_about_its_grasp(GraspModel.RIGID, kinematics)
+    assert status is OutcomeStatus.FAILURE
+
+
+def test_the_grasp_model_is_a_checked_world_field():
+    assert WorldConfig().grasp_model is GraspModel.COMPLIANT
+    with pytest.raises(SimulationError, match="grasp_model"):
+        WorldConfig(grasp_model="ball")

@@ -11,6 +11,7 @@ from door_sim_bridge.world.config import (
                                           CameraConfig,
                                           DoorConfig,
                                           ExecutionConfig,
+                                          GraspModel,
                                           RobotMode,
                                           RobotVisuals,
                                           StanceConfig,
@@ -24,5 +25,5 @@ from door_sim_bridge.world.world import DoorWorld, EventKind, SimEvent
 
 __all__ = ["HANDLE_JOINT", "HINGE_JOINT", "CameraConfig", "CameraFrame", "DoorConfig", "DoorGroundTruth",
            "DoorPart", "DoorState", "DoorWorld", "EventKind", "ExecutionConfig",
-           "GraspResult", "JointLimit", "RobotMode", "JointStates", "RobotVisuals", "SimEvent",
+           "GraspModel", "GraspResult", "JointLimit", "RobotMode", "JointStates", "RobotVisuals", "SimEvent",
            "StanceConfig", "WindConfig", "WorldConfig"]

@@ -41,6 +41,18 @@ class RobotMode(str, Enum):
     KINEMATIC = "kinematic"  # base fixed to the world and glided along footsteps: fast unit tests only
 
 
+class GraspModel(str, Enum):
+    """How a closed hand holds the lever (the constraint :mod:`door_sim_bridge.world.grasp` makes)."""
+
+    COMPLIANT = "compliant"
+    """At a point, free to turn about it: the hand passes forces to the lever but no torques, as
+    a compliant hand's padded fingers give way (the default). A hand a few mm off the lever's
+    estimated axis, or turned a degree, then follows the lever's true arc instead of fighting it."""
+    RIGID = "rigid"
+    """Locked in orientation, sliding only along the lever: the wrist must turn exactly with the
+    lever; an estimate 1 cm or 1.5° off held the wrist 0.1-0.25 rad from its goal (issue #11)."""
+
+
 class RobotVisuals(str, Enum):
     """Which robot links the camera renders (TinyRenderer cost grows with mesh triangles)."""
 
@@ -289,6 +301,7 @@ class WorldConfig:
     grasp_distance: float = 0.02  # m, TCP to handle grasp point, to close a grasp
     grasp_break_force: float = 200.0  # N, grip: constraint force beyond which the hand slips
     grasp_break_steps: int = 3  # consecutive physics steps above the limit before it slips
+    grasp_model: GraspModel = GraspModel.COMPLIANT
     joint_force_scale: float = 1.0  # x URDF effort limit given to each position motor
     robot_mode: RobotMode = RobotMode.PHYSICAL
     gait: GaitOptions = field(default_factory=GaitOptions)
@@ -313,6 +326,7 @@ class WorldConfig:
                              "grasp_break_force": (1.0, 1e5, "N"),
                              "joint_force_scale": (0.1, 100.0, ""), "floor_friction": (0.05, 3.0, "")})
         _require_enum("WorldConfig", "robot_mode", self.robot_mode, RobotMode)
+        _require_enum("WorldConfig", "grasp_model", self.grasp_model, GraspModel)
         self._check_overrides()
 
     def _check_overrides(self) -> None:

@@ -3,7 +3,8 @@
 Closing a hand attaches it only when its TCP is within ``grasp_distance`` of the handle's
 grasp point (position only, as the DRC teams' compliant hands tolerated orientation errors).
 The constraint is created at the hand's and handle's *current* relative pose, so it starts
-without a jerk. PyBullet expresses constraint frames relative to each link's centre of mass,
+without a jerk. It is the world's :class:`~door_sim_bridge.world.config.GraspModel`: a point
+the hand may turn about (compliant, the default) or a slider locked in orientation (rigid). PyBullet expresses constraint frames relative to each link's centre of mass,
 not its URDF frame: both frames are computed from the links' centre-of-mass poses.
 
 Each physics step the constraint's reaction force is read (``getConstraintState``: the solver's
@@ -22,6 +23,7 @@ import pybullet
 
 from door_contract.vocabulary import Side
 from door_sim_bridge.world.client import PhysicsClient
+from door_sim_bridge.world.config import GraspModel
 from door_sim_bridge.world.door import DoorPart, SimDoor
 from door_sim_bridge.world.robot import SimRobot
 from door_sim_bridge.world.transforms import invert, position_quaternion
@@ -53,13 +55,14 @@ class GraspController:
     """Attaches and releases the hands, and detects slips."""
 
     def __init__(self, client: PhysicsClient, robot: SimRobot, door: SimDoor, grasp_distance: float,
-                 break_force: float, break_steps: int) -> None:
+                 break_force: float, break_steps: int, model: GraspModel = GraspModel.COMPLIANT) -> None:
         self._client = client
         self._robot = robot
         self._door = door
         self._distance = grasp_distance
         self._break_force = break_force
         self._break_steps = break_steps
+        self._model = model
         self._hands = {side: _HandState() for side in robot.profile.arms}
         self._disable_hand_handle_collisions()
 
@@ -101,11 +104,18 @@ class GraspController:
     def _attach(self, side: Side) -> int:
         """Constraint at the TCP, expressed in both links' centre-of-mass frames.
 
-        Closed fingers hold a lever bar in every direction but one: the bar can slide
-        along its length inside the hand (the TCP's x axis, along the lever when the hand
-        grasps as the motion library places it). A prismatic constraint along that axis
-        models it; a hand a few millimetres off the estimated grasp point then does not
-        fight the handle's true axis while turning it.
+        Compliant (:attr:`GraspModel.COMPLIANT`): a point-to-point constraint, the TCP held
+        at its point on the lever in all three directions and free to turn about it; forces
+        pass, torques do not. The motion library plans the closed chain of turn and swing
+        on the *estimated* lever axis and hinge: with the estimate 1 cm or 1.5° off, the hand's
+        planned orientation drifts from the lever's by a few degrees over the turn, and a
+        rigid grip made the wrist fight the lever (held 0.1-0.25 rad off its goal: the motion
+        failed in 7 of 10 rig doors opened sideways, 5 of 10 facing). Padded, underactuated
+        fingers give way there; the wrist then follows its plan.
+
+        Rigid (:attr:`GraspModel.RIGID`): fingers locked on the bar in every direction but
+        one, the bar sliding along its length inside the hand (the TCP's x axis, along the
+        lever when the hand grasps as the motion library places it): a prismatic constraint.
         """
         hand_link = self._robot.link_index(self._robot.profile.arm(side).tcp_parent_frame)
         handle_link = self._door.link_index(DoorPart.HANDLE)
@@ -114,8 +124,9 @@ class GraspController:
         handle_com = self._door.link_com_pose(DoorPart.HANDLE)
         parent_position, parent_orientation = position_quaternion(invert(hand_com) @ joint_frame)
         child_position, child_orientation = position_quaternion(invert(handle_com) @ joint_frame)
+        kind = pybullet.JOINT_POINT2POINT if self._model is GraspModel.COMPLIANT else pybullet.JOINT_PRISMATIC
         constraint = self._client.createConstraint(
-            self._robot.body, hand_link, self._door.body, handle_link, pybullet.JOINT_PRISMATIC,
+            self._robot.body, hand_link, self._door.body, handle_link, kind,
             [1.0, 0.0, 0.0], parent_position, child_position, parent_orientation, child_orientation)
         self._client.changeConstraint(constraint, maxForce=SOLVER_FORCE_MARGIN * self._break_force)
         return constraint

@@ -118,7 +118,8 @@ class DoorWorld:
                                  np.random.default_rng(noise_seed), self._optical)
         self.robot.hide_links(self.config.camera.robot_visuals)
         self._grasps = GraspController(self._client, self.robot, self.door, self.config.grasp_distance,
-                                       self.config.grasp_break_force, self.config.grasp_break_steps)
+                                       self.config.grasp_break_force, self.config.grasp_break_steps,
+                                       self.config.grasp_model)
         # the floor exists exactly for the physical robot
         self.balance = (BalanceLoop(self._client, self.robot, self._floor, self.door.body, self.config,
                                     self._grasps.holding) if self._floor is not None else None)
