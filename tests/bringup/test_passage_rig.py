@@ -2,10 +2,14 @@
 
 import pytest
 
+import numpy as np
+
 from door_bringup.passage_rig import (
     NODE_DEFAULTS,
+    EstimateError,
     HandCommand,
     PassageRun,
+    erroneous_estimate,
     main,
     opening_hand,
     opening_sequence,
@@ -93,3 +97,41 @@ def test_walked_to_the_stand_pose_the_robot_opens_the_door_and_walks_through_it(
 
     run = run_door(DoorOpening.PUSH, HingeSide.LEFT, 0, RobotKinematics(load_profile("talos")), walk_from=1.5)
     assert run.stage == WALKED_THROUGH, run.line()
+
+
+@pytest.fixture(scope="module")
+def true_estimate():
+    with stand_world(DoorConfig()) as world:
+        return perfect_estimate(world)
+
+
+def test_an_erroneous_estimate_is_the_true_door_moved_rigidly(true_estimate):
+    shift, yaw = np.array([0.01, -0.006, 0.004]), np.radians(1.5)
+    moved = erroneous_estimate(true_estimate, shift, yaw)
+    normal, handle = np.array(true_estimate.normal), np.array(true_estimate.handle_position)
+    along = np.cross([0.0, 0.0, 1.0], normal)
+    offset = np.array(moved.handle_position) - handle
+    assert np.allclose(offset, shift[0] * normal + shift[1] * along / np.linalg.norm(along) + [0, 0, shift[2]])
+    assert np.degrees(np.arccos(np.clip(np.dot(moved.normal, normal), -1, 1))) == pytest.approx(1.5, abs=1e-6)
+    corners, moved_corners = np.array(true_estimate.corners), np.array(moved.corners)
+    spans = lambda c: np.linalg.norm(c[:, None] - c[None], axis=-1)  # noqa: E731
+    assert np.allclose(spans(corners), spans(moved_corners)) and not np.allclose(corners, moved_corners)
+    assert moved.width == true_estimate.width and moved.hinge_side is true_estimate.hinge_side
+    unmoved = erroneous_estimate(true_estimate, np.zeros(3), 0.0)
+    assert np.allclose(unmoved.corners, corners) and np.allclose(unmoved.handle_position, handle)
+
+
+def test_each_trial_draws_its_error_within_the_bounds():
+    bounds = EstimateError(0.006, np.radians(0.5))
+    draws = [bounds.drawn(np.random.default_rng([trial, 1])) for trial in range(50)]
+    assert all(np.all(np.abs(shift) <= 0.006) and abs(yaw) <= np.radians(0.5) for shift, yaw in draws)
+    assert len({round(yaw, 9) for _, yaw in draws}) == 50
+    shift, yaw = EstimateError().drawn(np.random.default_rng(3))
+    assert not np.any(shift) and yaw == 0.0
+
+
+@pytest.mark.parametrize("bounds", [["-1", "0"], ["0.5", "nan"], ["11", "1"]])
+def test_an_estimate_error_outside_its_range_is_refused(bounds, capsys):
+    with pytest.raises(SystemExit) as stopped:
+        main(["--estimate-error", *bounds])
+    assert stopped.value.code == 2 and "--estimate-error" in capsys.readouterr().err

@@ -29,6 +29,7 @@ first, as the graph does (the walk's landing and sway matter: the rig's placed r
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
@@ -118,13 +119,51 @@ def perfect_estimate(world: DoorWorld) -> DoorEstimate:
                         1.0, 10, DetectionMode.AUTOMATIC)
 
 
+@dataclass(frozen=True)
+class EstimateError:
+    """Largest error a trial puts into the rig's (otherwise perfect) estimate, as the
+    detector's: the whole door shifted along its normal, along the wall and in height (m),
+    and turned about the vertical through the handle (rad). Each trial draws uniformly
+    within these bounds (trial 0 too); zero is the perfect detector."""
+
+    position: float = 0.0
+    yaw: float = 0.0
+
+    def drawn(self, rng: np.random.Generator) -> tuple[np.ndarray, float]:
+        """(shift along normal, along wall, up; yaw) for one trial."""
+        return rng.uniform(-1.0, 1.0, 3) * self.position, float(rng.uniform(-1.0, 1.0) * self.yaw)
+
+
+def erroneous_estimate(estimate: DoorEstimate, shift: np.ndarray, yaw: float) -> DoorEstimate:
+    """``estimate`` moved rigidly: turned by ``yaw`` about the vertical through the handle,
+    then shifted by ``shift`` = (along its normal, along the wall, up) in metres."""
+    normal = np.array(estimate.normal)
+    along = np.cross([0.0, 0.0, 1.0], normal)
+    along /= np.linalg.norm(along)
+    c, s = np.cos(yaw), np.sin(yaw)
+    turn = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+    handle = np.array(estimate.handle_position)
+    offset = shift[0] * normal + shift[1] * along + shift[2] * np.array([0.0, 0.0, 1.0])
+
+    def moved(point: Sequence[float]) -> tuple[float, float, float]:
+        x, y, z = turn @ (np.asarray(point) - handle) + handle + offset
+        return float(x), float(y), float(z)
+
+    nx, ny, nz = turn @ normal
+    return dataclasses.replace(estimate, handle_position=moved(estimate.handle_position),
+                               normal=(float(nx), float(ny), float(nz)),
+                               corners=tuple(moved(corner) for corner in estimate.corners))
+
+
 def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
-                robot: str = "talos", parameters: Mapping[str, object] = NODE_DEFAULTS) -> DoorWorld:
+                robot: str = "talos", parameters: Mapping[str, object] = NODE_DEFAULTS,
+                error: tuple[np.ndarray, float] = (np.zeros(3), 0.0)) -> DoorWorld:
     """``robot`` at the stand pose the footstep planner (with ``parameters``) chooses for
-    ``door``, plus ``offset`` (along the door normal, along the wall, yaw), standing on the
-    floor: facing the door, or sideways beside a push door's opening (``push_passage``)."""
+    ``door`` as estimated with ``error`` (:func:`erroneous_estimate`), plus ``offset`` (along
+    the door normal, along the wall, yaw), standing on the floor: facing the door, or sideways
+    beside a push door's opening (``push_passage``)."""
     with DoorWorld(WorldConfig(robot_profile=robot, door=door)) as probe:
-        estimate = perfect_estimate(probe)
+        estimate = erroneous_estimate(perfect_estimate(probe), *error)
     settings = GoalSettings.from_parameters(parameters)
     options = planner_options(robot, parameters)
     geometry = door_geometry_from_estimate(estimate, door.opening, 0.0, settings.handle_standoff)
@@ -274,26 +313,29 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
 
 
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
-             planner_parameters: Mapping[str, object] | None = None, walk_from: float | None = None) -> PassageRun:
+             planner_parameters: Mapping[str, object] | None = None, walk_from: float | None = None,
+             estimate_error: EstimateError = EstimateError()) -> PassageRun:
     """One door for the robot of ``kinematics``, the passage planned with the footstep planner
     node's defaults updated by ``planner_parameters``. The robot starts at the stand pose
     jittered by ``trial`` (0: none), or, with ``walk_from`` (m), that far in front of the door
     and walks to the stand pose first, as in the graph (``trial`` > 0: up to ±0.3 m aside and
-    ±0.3 rad turned)."""
+    ±0.3 rad turned). Every plan uses the ground truth with ``estimate_error`` drawn for the
+    trial (its own random stream: the jitter does not change with it)."""
     rng = np.random.default_rng(trial)
+    error = estimate_error.drawn(np.random.default_rng([trial, 1]))
     robot = kinematics.profile.name
     parameters = {**NODE_DEFAULTS, **(planner_parameters or {})}
     door = DoorConfig(opening=opening, hinge_side=hinge)
     peaks: dict[str, float] = {}
     if walk_from is None:
         jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
-        world = stand_world(door, (jitter[0], jitter[1], jitter[2]), robot, parameters)
+        world = stand_world(door, (jitter[0], jitter[1], jitter[2]), robot, parameters, error)
     else:
         aside, turned = (0.0, 0.0) if trial == 0 else tuple(rng.uniform(-0.3, 0.3, 2))
         world = DoorWorld(WorldConfig(robot_profile=robot, door=door,
                                       stance=StanceConfig(distance=walk_from, lateral_offset=aside, yaw=turned)))
     with world:
-        estimate = perfect_estimate(world)
+        estimate = erroneous_estimate(perfect_estimate(world), *error)
         stage, status, reason = WALK_TO_DOOR, "success", ""
         if walk_from is not None:
             status, reason = _walk(world, estimate, WalkGoal.STAND, WalkPlanners(),
@@ -322,6 +364,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--walk-from", type=float, default=None, metavar="M",
                         help="start M m in front of the door (0.8-8) and walk to the stand pose first, as in "
                              "the graph (trials > 0: up to 0.3 m aside and 0.3 rad turned); default: start there")
+    parser.add_argument("--estimate-error", type=float, nargs=2, default=(0.0, 0.0), metavar=("CM", "DEG"),
+                        help="plan with the door estimated up to CM cm off along each axis and DEG degrees "
+                             "turned, drawn per trial (the detector's errors; default: a perfect estimate)")
     parser.add_argument("--tuck-at", type=float, default=NODE_DEFAULTS["tuck_at"],
                         help="the footstep planner's tuck_at: the doorway walk ends this far before the door plane (m)")
     args = parser.parse_args(argv)
@@ -334,6 +379,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         validate_all(PLANNER_PARAMETERS, overrides)
     except ParameterRangeError as error:
         parser.error(str(error))
+    if not all(0.0 <= bound <= 10.0 for bound in args.estimate_error):
+        parser.error(f"--estimate-error must be within [0, 10] cm and [0, 10] degrees, got {args.estimate_error}")
+    error = EstimateError(args.estimate_error[0] / 100.0, np.radians(args.estimate_error[1]))
     check_robot(parser, args.robot)
     kinematics = RobotKinematics(load_profile(args.robot))
     runs = []
@@ -341,7 +389,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         for hinge in args.hinges:
             for trial in range(args.trials):
                 runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics, overrides,
-                                     args.walk_from))
+                                     args.walk_from, error))
                 print(runs[-1].line(), flush=True)
     through = sum(run.stage == WALKED_THROUGH and run.status == "success" for run in runs)
     fell = sum(run.status == OutcomeStatus.FELL.value for run in runs)
