@@ -198,8 +198,8 @@ def test_the_dead_man_stops_the_execution_and_refuses_new_ones_until_the_supervi
     loop, publish = _loop(world, timeout_s=3.0), Published()
     loop.supervisor_beat(100.0)
     assert loop.submit(TRAJECTORY, 16, _move_arm(np.full(4, 0.1), duration=2.0)).started
-    assert loop.tick(102.0, publish).stop is None
-    report = loop.tick(103.5, publish)
+    assert all(loop.tick(now, publish).stop is None for now in np.arange(100.0, 103.0, 0.5))
+    report = loop.tick(103.25, publish)
     assert report.stop.dead_man and str(report.stop.stopped) == "trajectory 16" and "silent" in report.stop.why
     assert [(o.request_id, o.status) for o in report.outcomes] == [(16, OutcomeStatus.STOPPED)]
     refused = loop.submit(TRAJECTORY, 17, _move_arm(np.zeros(4)))
@@ -245,3 +245,18 @@ def test_a_report_sorts_its_log_lines_by_severity():
     dead = LoopReport(stop=Stop("supervisor silent for 2.0 s", None, dead_man=True))
     assert dead.errors == ["supervisor silent for 2.0 s"]
     assert LoopReport().errors == LoopReport().warnings == LoopReport().notes == []
+
+
+def test_a_tick_that_kept_the_bridge_busy_is_not_the_supervisors_silence(world):
+    """The first tick of a long walk computes its pattern for seconds: the heartbeats wait in
+    the bridge's queue and the simulation stands still, so that gap does not trip the dead-man;
+    silence while the bridge ticks does."""
+    _start_over(world)
+    loop, publish = _loop(world, timeout_s=3.0), Published()
+    loop.supervisor_beat(100.0)
+    assert loop.submit(TRAJECTORY, 19, _move_arm(np.full(4, 0.1), duration=20.0)).started
+    assert loop.tick(100.1, publish).stop is None
+    assert loop.tick(104.6, publish).stop is None  # 4.5 s inside one tick
+    assert all(loop.tick(now, publish).stop is None for now in np.arange(104.8, 107.4, 0.2))
+    report = loop.tick(107.8, publish)  # 3.3 s of listening since the beat (the 4.5 s deaf taken off)
+    assert report.stop.dead_man and "silent" in report.stop.why
