@@ -1,4 +1,4 @@
-"""A push door passed sideways, its back to the hinge (footstep_planner.push_passage, a study option)."""
+"""A push door passed sideways, its back to the hinge (footstep_planner.push_passage, the default)."""
 
 import math
 
@@ -16,9 +16,9 @@ from footstep_planner.requests import GoalSettings, options_for_problem, walk_pr
 SIDEWAYS = GoalSettings.from_parameters({"push_passage": "sideways"})
 
 
-def test_facing_is_the_default_and_sideways_is_read_from_the_parameters() -> None:
-    assert GoalSettings().push_passage is PushPassage.FACING
-    assert SIDEWAYS.push_passage is PushPassage.SIDEWAYS
+def test_sideways_is_the_default_and_facing_is_read_from_the_parameters() -> None:
+    assert GoalSettings().push_passage is PushPassage.SIDEWAYS == SIDEWAYS.push_passage
+    assert GoalSettings.from_parameters({"push_passage": "facing"}).push_passage is PushPassage.FACING
 
 
 def test_from_anywhere_but_the_stand_pose_the_passage_first_walks_to_its_line() -> None:

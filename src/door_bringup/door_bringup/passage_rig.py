@@ -360,7 +360,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                         default=NODE_DEFAULTS["pull_passage"], help="the footstep planner's pull_passage")
     parser.add_argument("--push-passage", choices=[p.value for p in PushPassage],
                         default=NODE_DEFAULTS["push_passage"],
-                        help="the footstep planner's push_passage (sideways: a study option, footstep_planner.push_passage)")
+                        help="the footstep planner's push_passage (footstep_planner.push_passage)")
     parser.add_argument("--walk-from", type=float, default=None, metavar="M",
                         help="start M m in front of the door (0.8-8) and walk to the stand pose first, as in "
                              "the graph (trials > 0: up to 0.3 m aside and 0.3 rad turned); default: start there")

@@ -32,10 +32,11 @@ PLANNER_PARAMETERS = (
     ParameterSpec("passage_door_angle", 1.57, "door angle assumed while passing: the body pushes the "
                   "leaf open ([Banerjee 2015] used a potential field for the swinging door)", unit="rad",
                   minimum=0.0, maximum=2.0),
-    ParameterSpec("push_passage", "facing", "how a push door is passed: 'facing' opens it facing the door and "
-                  "walks through facing the doorway, the body pushing the leaf; 'sideways' opens it standing "
-                  "sideways beside the doorway, its back to the hinge, and side-steps through (a study option of "
-                  "the passage rig: footstep_planner.push_passage)", choices=("facing", "sideways")),
+    ParameterSpec("push_passage", "sideways", "how a push door is passed: 'sideways' opens it standing "
+                  "sideways beside the doorway, its back to the hinge, and side-steps through "
+                  "(footstep_planner.push_passage); 'facing' opens it facing the door and walks through facing "
+                  "the doorway, the body pushing the leaf (TALOS's shoulders wedge the leaf: 0/20 on the rig)",
+                  choices=("sideways", "facing")),
     ParameterSpec("push_side_reach", 0.50, "sideways push: base to door plane when opening (at 0.45 the last "
                   "steps of the walk there swayed the door-side arm into the handle)", unit="m",
                   minimum=0.2, maximum=1.5),

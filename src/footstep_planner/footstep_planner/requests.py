@@ -102,8 +102,8 @@ class GoalSettings:
     """Goal distance past the door plane (m)."""
     passage_door_angle: float = 1.57
     """Push-door angle assumed while passing: the body pushes the leaf open (rad)."""
-    push_passage: PushPassage = PushPassage.FACING
-    """How a push door is passed (:class:`~footstep_planner.push_passage.PushPassage`; sideways is a study option)."""
+    push_passage: PushPassage = PushPassage.SIDEWAYS
+    """How a push door is passed (:class:`~footstep_planner.push_passage.PushPassage`)."""
     push_side_reach: float = 0.50
     """Sideways: base to the door plane when opening a push door (m)."""
     push_stand_offset: float = 0.12
