@@ -1,8 +1,7 @@
 """The passage rig's sequence and report line (the scenes themselves serve tests/door_trajopt)."""
 
-import pytest
-
 import numpy as np
+import pytest
 
 from door_bringup.passage_rig import (
     NODE_DEFAULTS,

@@ -8,8 +8,8 @@ from door_contract.payloads import OutcomeStatus
 from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
-from door_sim_bridge.execution import TrajectoryExecution
 from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.execution import TrajectoryExecution
 from door_sim_bridge.world import DoorWorld, EventKind, GraspModel, RobotMode, WorldConfig
 from door_sim_bridge.world.transforms import translation
 

@@ -381,7 +381,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error(str(error))
     if not all(0.0 <= bound <= 10.0 for bound in args.estimate_error):
         parser.error(f"--estimate-error must be within [0, 10] cm and [0, 10] degrees, got {args.estimate_error}")
-    error = EstimateError(args.estimate_error[0] / 100.0, np.radians(args.estimate_error[1]))
+    estimate_error = EstimateError(args.estimate_error[0] / 100.0, np.radians(args.estimate_error[1]))
     check_robot(parser, args.robot)
     kinematics = RobotKinematics(load_profile(args.robot))
     runs = []
@@ -389,7 +389,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         for hinge in args.hinges:
             for trial in range(args.trials):
                 runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics, overrides,
-                                     args.walk_from, error))
+                                     args.walk_from, estimate_error))
                 print(runs[-1].line(), flush=True)
     through = sum(run.stage == WALKED_THROUGH and run.status == "success" for run in runs)
     fell = sum(run.status == OutcomeStatus.FELL.value for run in runs)
