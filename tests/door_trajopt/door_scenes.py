@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from door_bringup.passage_rig import NODE_DEFAULTS
 from door_bringup.passage_rig import motion_setup as rig_motion_setup
 from door_bringup.passage_rig import perfect_estimate
 from door_bringup.passage_rig import stand_world as rig_stand_world
@@ -19,10 +20,12 @@ estimate_from_world = perfect_estimate
 
 def stand_world(opening: DoorOpening = DoorOpening.PUSH, hinge: HingeSide = HingeSide.LEFT,
                 **door_fields: float) -> DoorWorld:
-    """The robot where the footstep planner node (default parameters) puts it to open this
-    door (``door_fields``: other DoorConfig values): facing it, for pull doors just past the
-    latch edge and out of the pulled leaf."""
-    return rig_stand_world(DoorConfig(opening=opening, hinge_side=hinge, **door_fields))
+    """The robot where the footstep planner node puts it to open this door facing it
+    (``door_fields``: other DoorConfig values), for pull doors just past the latch edge and out
+    of the pulled leaf: the node's defaults but ``push_passage: facing``, the stance these
+    tests were written at (the sideways push stance, the default, has tests of its own)."""
+    return rig_stand_world(DoorConfig(opening=opening, hinge_side=hinge, **door_fields),
+                           parameters={**NODE_DEFAULTS, "push_passage": "facing"})
 
 
 def motion_setup(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate,

@@ -263,7 +263,7 @@ def test_the_tuck_takes_the_blocking_arm_to_the_walking_posture_with_the_torso_h
 
 @pytest.mark.slow
 def test_sideways_the_hinge_side_hand_opens_a_push_door_and_holds_it_with_the_arm_inside_the_doorway():
-    """footstep_planner.push_passage (a study option): the robot stands sideways, its back to the
+    """footstep_planner.push_passage (the default): the robot stands sideways, its back to the
     hinge; the hinge-side hand approaches, grasps, turns and pushes, lets go, and ready_to_walk
     keeps it on the leaf (the door never closes on the latch) with every arm joint inside the
     doorway, doorway_arm_margin from the latch-side post (the elbow struck the post without)."""

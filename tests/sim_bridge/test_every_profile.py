@@ -8,8 +8,9 @@ true of the robot's model (issue #14: no TALOS assumptions in the cores).
   ahead of the base);
 * the head camera looks forward and down, with the image's x to the robot's right;
 * each hand's grasp orientation is a rotation that puts ``into_door`` into the door and ``up``
-  up, and the hand reaches it at the handle from the stand pose of a push door (IK from several
-  seeds; the motion library's own problem adds the path and its constraints).
+  up, and the hand reaches it at the handle from the stand pose of a push door, facing it and
+  sideways (IK from several seeds; the motion library's own problem adds the path and its
+  constraints). Atlas v4 does not reach the sideways stance's handle (issue #14).
 
 Atlas v4 and DRC-HUBO come from ../shared/data and skip without it.
 """
@@ -19,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from door_bringup.passage_rig import motion_setup, opening_hand, perfect_estimate, stand_world
+from door_bringup.passage_rig import NODE_DEFAULTS, motion_setup, opening_hand, perfect_estimate, stand_world
 from door_contract.vocabulary import DoorOpening, HingeSide
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
@@ -70,10 +71,17 @@ def test_the_head_camera_looks_forward_and_down(robot):
     np.testing.assert_allclose(optical[:3, :3].T @ optical[:3, :3], np.eye(3), atol=1e-6)
 
 
+@pytest.mark.parametrize("passage", ["facing", "sideways"])
 @pytest.mark.parametrize("hinge", [HingeSide.LEFT, HingeSide.RIGHT])
-def test_each_hand_reaches_its_grasp_at_a_push_doors_handle(robot, hinge):
+def test_each_hand_reaches_its_grasp_at_a_push_doors_handle(robot, hinge, passage, request):
+    if (robot, passage) == ("atlas_v4", "sideways"):
+        request.applymarker(pytest.mark.xfail(strict=True, reason=(
+            "Atlas v4 reaches a sideways stance's handle only from ~0.65 m; the stand pose is "
+            "TALOS's 0.50 m for every robot (issue #14)")))
     kinematics = RobotKinematics(load_profile(robot))
-    with stand_world(DoorConfig(opening=DoorOpening.PUSH, hinge_side=hinge), robot=robot) as world:
+    parameters = {**NODE_DEFAULTS, "push_passage": passage}
+    with stand_world(DoorConfig(opening=DoorOpening.PUSH, hinge_side=hinge), robot=robot,
+                     parameters=parameters) as world:
         estimate = perfect_estimate(world)
         hand = opening_hand(world, estimate)
         setup = motion_setup(world, kinematics, estimate, hand, (0.0, 0.0))
