@@ -3,9 +3,8 @@
 
 from __future__ import annotations
 
-from door_bringup.passage_rig import NODE_DEFAULTS
+from door_bringup.passage_rig import NODE_DEFAULTS, perfect_estimate
 from door_bringup.passage_rig import motion_setup as rig_motion_setup
-from door_bringup.passage_rig import perfect_estimate
 from door_bringup.passage_rig import stand_world as rig_stand_world
 from door_contract.payloads import DoorEstimate
 from door_contract.vocabulary import DoorOpening, HingeSide, Side, grasp_hand
