@@ -224,23 +224,10 @@ def _doorway_clearance(setup: MotionSetup, options: MotionOptions) -> WaypointFu
     g = s − (s_post − margin) − slope·max(0, d − d₀) ≤ 0 — the post only constrains points
     that are at (or past) the wall plane; in front of it the bound relaxes linearly.
     """
-    k, frames = setup.chain.size, setup.chain.forearm_frames
-    along, hinge, normal = setup.door.along, setup.door.hinge_point, setup.door.normal
+    normal = setup.door.normal
     face = setup.door.grasp_point - options.lever_standoff * normal
     limit = setup.door_width - options.post_inset - options.forearm_clearance
-    slope, free_distance = 3.0, 0.03
-
-    def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
-        values, rows = [], []
-        for frame in frames:
-            point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
-            ahead = (point - face) @ normal - free_distance
-            relax = slope * max(0.0, ahead)
-            values.append((point - hinge) @ along - limit - relax)
-            gradient = along - (slope * normal if ahead > 0 else 0.0)
-            rows.append(np.concatenate([gradient @ jacobian, np.zeros(2)]))
-        return np.array(values), np.array(rows)
-    return function
+    return _along_wall_below(setup, setup.chain.forearm_frames, limit, WallRelaxation(face, normal))
 
 
 def _head_clearance(setup: MotionSetup, options: MotionOptions) -> WaypointFunction:
@@ -599,17 +586,35 @@ def _leaf_plane_distance(setup: MotionSetup, distance: float) -> WaypointFunctio
     return function
 
 
-def _along_wall_below(setup: MotionSetup, frames: tuple[str, ...], limit: float) -> WaypointFunction:
-    """g_i = (p_i − p_hinge)·u − limit ≤ 0 for each frame's origin p_i (u along the closed
-    door from the hinge towards the latch)."""
+@dataclass(frozen=True)
+class WallRelaxation:
+    """Where a bound along the wall stops applying: in front of the wall's face (a point
+    ``face`` on it, robot-side unit ``normal``) it relaxes by ``slope``·max(0, d − ``free``),
+    d = (p − face)·n, so only points at (or past) the wall plane are held by it."""
+
+    face: np.ndarray
+    normal: np.ndarray
+    slope: float = 3.0
+    free: float = 0.03  # m in front of the face where the bound still holds in full
+
+
+def _along_wall_below(setup: MotionSetup, frames: tuple[str, ...], limit: float,
+                      relaxation: WallRelaxation | None = None) -> WaypointFunction:
+    """g_i = (p_i − p_hinge)·u − limit − r_i ≤ 0 for each frame's origin p_i (u along the
+    closed door from the hinge towards the latch; r_i the :class:`WallRelaxation`, 0 without)."""
     k, along, hinge = setup.chain.size, setup.door.along, setup.door.hinge_point
 
     def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
         values, rows = [], []
         for frame in frames:
             point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
-            values.append((point - hinge) @ along - limit)
-            rows.append(np.concatenate([along @ jacobian, np.zeros(2)]))
+            value, gradient = (point - hinge) @ along - limit, along
+            if relaxation is not None:
+                ahead = (point - relaxation.face) @ relaxation.normal - relaxation.free
+                if ahead > 0.0:
+                    value, gradient = value - relaxation.slope * ahead, along - relaxation.slope * relaxation.normal
+            values.append(value)
+            rows.append(np.concatenate([gradient @ jacobian, np.zeros(2)]))
         return np.array(values), np.array(rows)
     return function
 
