@@ -24,6 +24,9 @@ from door_fsm.records import Instant
 from door_fsm.supervisor import GRASP_SERVICES, SupervisedRobot, Supervisor
 from door_robot.profile import load_profile
 
+HANDS_ONLY = ((Side.LEFT, frozenset()), (Side.RIGHT, frozenset()))
+"""Both hands, their chains unnamed: what these tests need of a robot."""
+
 ESTIMATE = DoorEstimate(0.0, "odom", (1.2, -0.35, 0.95), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
                         ((1.2, 0.46, 0.0), (1.2, -0.46, 0.0), (1.2, -0.46, 2.08), (1.2, 0.46, 2.08)),
                         1.0, 10, "automatic")
@@ -63,7 +66,7 @@ def _walk_request(supervisor: Supervisor) -> act.RequestFootsteps:
 
 
 def test_a_walk_is_requested_with_the_approved_door_and_given_its_steps_time() -> None:
-    supervisor = _started(SupervisedRobot("g1", frozenset(Side), step_duration=0.8))
+    supervisor = _started(SupervisedRobot("g1", 0.8, HANDS_ONLY))
     request = _walk_request(supervisor)
     kind, payload = supervisor.request(request)
     assert kind == "footsteps" and payload.door == encode(ESTIMATE) and payload.request_id == request.request_id
@@ -83,7 +86,7 @@ def test_a_walk_is_requested_with_the_approved_door_and_given_its_steps_time() -
 
 
 def test_the_robots_answer_to_what_it_was_sent_finishes_the_state() -> None:
-    supervisor = _started(SupervisedRobot("talos", frozenset(Side), step_duration=1.5))
+    supervisor = _started(SupervisedRobot("talos", 1.5, HANDS_ONLY))
     request = _walk_request(supervisor)
     path = Path(poses=[PoseStamped()])
     path.header.stamp = time_msg_of_ns(7)
@@ -108,7 +111,7 @@ def test_the_robots_answer_to_what_it_was_sent_finishes_the_state() -> None:
     (lambda s: s.operator("dance", t(1.0)), "unknown operator command 'dance'"),
 ])
 def test_bad_input_is_one_notice_and_changes_nothing(feed, says: str) -> None:
-    supervisor = _started(SupervisedRobot("talos", frozenset(Side), step_duration=1.5))
+    supervisor = _started(SupervisedRobot("talos", 1.5, HANDS_ONLY))
     before = (supervisor.machine.state, supervisor.machine.request_id, supervisor.door.latest)
     actions = feed(supervisor)
     assert len(actions) == 1 and isinstance(actions[0], act.Notice) and says in actions[0].text, actions
@@ -116,13 +119,13 @@ def test_bad_input_is_one_notice_and_changes_nothing(feed, says: str) -> None:
 
 
 def test_a_door_whose_grasp_hand_the_robot_lacks_says_so() -> None:
-    one_armed = SupervisedRobot("one_armed", frozenset({Side.LEFT}), step_duration=1.0)
+    one_armed = SupervisedRobot("one_armed", 1.0, ((Side.LEFT, frozenset()),))
     supervisor = _started(one_armed)
     supervisor.door.approved = ESTIMATE  # hinge left, push: the right hand opens it
     hand, problem = supervisor.grasp_hand()
     assert hand is Side.RIGHT and problem == "one_armed has no right hand (its profile's arms: left)"
     assert one_armed.grasp_services() == {Side.LEFT: GRASP_SERVICES[Side.LEFT]}
-    assert _started(SupervisedRobot("talos", frozenset(Side), 1.5)).grasp_hand() == (Side.RIGHT, "")
+    assert _started(SupervisedRobot("talos", 1.5, HANDS_ONLY)).grasp_hand() == (Side.RIGHT, "")
 
 
 def test_the_head_search_moves_the_neck_only_while_detect_door_waits() -> None:

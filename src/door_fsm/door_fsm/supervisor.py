@@ -55,19 +55,23 @@ GRASP_SERVICES: dict[Side, ServiceSpec] = {Side.LEFT: Services.LEFT_GRASP, Side.
 
 @dataclass(frozen=True)
 class SupervisedRobot:
-    """What the supervisor knows of the robot (from its profile): its name, the hands it has
-    (a side with an arm chain), its time per footstep (s, robot clock) and the joints of each
-    arm chain (a look may not move them; an approach's joints say which hand it moves)."""
+    """What the supervisor knows of the robot (from its profile): its name, its time per
+    footstep (s, robot clock) and the joints of each arm chain, by side (a look may not move
+    them; an approach's joints say which hand it moves; a side with a chain has a hand)."""
 
     name: str
-    hands: frozenset[Side]
     step_duration: float
-    arms: tuple[tuple[Side, frozenset[str]], ...] = ()
+    arms: tuple[tuple[Side, frozenset[str]], ...]
 
     @classmethod
     def of(cls, profile: RobotProfile) -> SupervisedRobot:
         arms = tuple((Side(side), frozenset(arm.joints)) for side, arm in profile.arms.items())
-        return cls(profile.name, frozenset(side for side, _ in arms), profile.walking.step_duration, arms)
+        return cls(profile.name, profile.walking.step_duration, arms)
+
+    @property
+    def hands(self) -> frozenset[Side]:
+        """The sides with an arm chain."""
+        return frozenset(side for side, _ in self.arms)
 
     @property
     def arm_joints(self) -> frozenset[str]:
