@@ -13,13 +13,14 @@ sim's robot, the kinematics the motions are planned with, and the footstep plann
 The walk through is the FSM's: a push door in one walk; a pull door to the doorway, the
 blocking arm's tuck, and on through (:mod:`footstep_planner.pull_passage`). ``--pull-passage``,
 ``--push-passage`` and ``--tuck-at`` are the footstep planner's parameters of those names, for
-studies (``--push-passage sideways``: the push door opened and passed sideways, its back to the
-hinge: :mod:`footstep_planner.push_passage`). The hand is the optimiser node's: the arm on the
-handle's side.
+studies (the default ``--push-passage sideways``: the push door opened and passed sideways, its
+back to the hinge, :mod:`footstep_planner.push_passage`; ``facing`` the earlier way). The hand is
+the optimiser node's: the arm on the handle's side. ``--estimate-error CM DEG`` gives every plan
+the door as a detector would, moved up to CM cm per axis and turned up to DEG degrees.
 
     python -m door_bringup.passage_rig --robot g1 --openings push pull --hinges left right --trials 3
     python -m door_bringup.passage_rig --openings pull --trials 5 --tuck-at 0.5
-    python -m door_bringup.passage_rig --openings push --trials 10 --push-passage sideways
+    python -m door_bringup.passage_rig --openings push --trials 10 --estimate-error 0.6 0.5
     python -m door_bringup.passage_rig --openings push --walk-from 2.5 --trials 4
 
 ``--walk-from M`` starts the robot M m in front of the door and walks it to the stand pose
