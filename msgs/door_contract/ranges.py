@@ -1,13 +1,18 @@
-"""The allowed interval of one option or value, shared by the packages' validated options.
+"""The allowed interval of one option or value, and the one check of it, shared by the
+packages' validated options.
 
 Each package raises its own error type when a value is outside (the rosbags layout: per-package
-errors); the interval and its wording are the same everywhere.
+errors), through :func:`check_in_range`; the interval and its wording are the same everywhere:
+``<owner>.<field> = <value> is outside the allowed range [low, high] <unit>``.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
+
+__all__ = ["FieldRange", "check_in_range"]
 
 
 @dataclass(frozen=True)
@@ -32,4 +37,15 @@ class FieldRange:
             return f"any finite value {self.unit}".rstrip()
         opening = "(" if self.low_open else "["
         closing = ")" if self.high_open else "]"
-        return f"{opening}{self.low:g}, {self.high:g}{closing} {self.unit}".rstrip()
+        return f"{opening}{self.low:.10g}, {self.high:.10g}{closing} {self.unit}".rstrip()
+
+
+def check_in_range(label: str, value: object, allowed: FieldRange, error: Callable[[str], Exception],
+                   integer: bool = False) -> None:
+    """Raise ``error(message)`` unless ``value`` is a finite real number (not a bool; an ``int``
+    when ``integer``) within ``allowed``; ``label`` names it (``"MotionOptions.push_angle"``)."""
+    kind = "an integer" if integer else "a number"
+    if isinstance(value, bool) or not isinstance(value, int if integer else (int, float)):
+        raise error(f"{label} must be {kind} in {allowed.describe()}, got {value!r}")
+    if not math.isfinite(value) or not allowed.admits(value):
+        raise error(f"{label} = {value!r} is outside the allowed range {allowed.describe()}")

@@ -21,13 +21,13 @@ def test_defaults_follow_the_paper() -> None:
 
 
 @pytest.mark.parametrize("field, value, words", [
-    ("canny_low", 0, "canny_low = 0 is outside [1, 1000]"),
-    ("plane_inlier_distance", 0.0, "plane_inlier_distance = 0.0 is outside (0, 0.5] m"),
+    ("canny_low", 0, "canny_low = 0 is outside the allowed range [1, 1000]"),
+    ("plane_inlier_distance", 0.0, "plane_inlier_distance = 0.0 is outside the allowed range (0, 0.5] m"),
     ("vote_frames", 2.5, "vote_frames must be an integer"),
     ("line_scale", True, "line_scale must be a number"),
     ("door_width_min", float("nan"), "door_width_min = nan is outside"),
-    ("vote_min_agreeing", 0, "vote_min_agreeing = 0 is outside [1, 100] frames"),
-    ("vote_handle_confidence", 0.0, "vote_handle_confidence = 0.0 is outside (0, 0.1] m"),
+    ("vote_min_agreeing", 0, "vote_min_agreeing = 0 is outside the allowed range [1, 100] frames"),
+    ("vote_handle_confidence", 0.0, "vote_handle_confidence = 0.0 is outside the allowed range (0, 0.1] m"),
 ])
 def test_bad_option_names_field_and_range(field, value, words) -> None:
     with pytest.raises(DetectionError, match=words.replace("(", r"\(").replace("[", r"\[")):

@@ -69,7 +69,7 @@ def test_sqp_options_reject_out_of_range(field: str, value: object) -> None:
 
 
 def test_error_message_states_allowed_range() -> None:
-    with pytest.raises(TrajoptError, match=r"\(0.0, 1.0\]"):
+    with pytest.raises(TrajoptError, match=r"ChompOptions.step_size = 2.0 is outside the allowed range \(0, 1\]"):
         ChompOptions(step_size=2.0)
     assert not issubclass(TrajoptError, ValueError)
 

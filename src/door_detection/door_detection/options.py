@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, fields
 
-from door_contract.ranges import FieldRange
+from door_contract.ranges import FieldRange, check_in_range
 from door_detection.errors import DetectionError
 
 
@@ -307,14 +307,8 @@ class DetectionOptions:
     def __post_init__(self) -> None:
         ranges = _ranges()
         for spec in fields(self):
-            value = getattr(self, spec.name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise DetectionError(f"{spec.name} must be a number, got {value!r}")
-            if spec.type == "int" and not isinstance(value, int):
-                raise DetectionError(f"{spec.name} must be an integer, got {value!r}")
-            allowed = ranges[spec.name]
-            if value != value or not allowed.admits(float(value)):
-                raise DetectionError(f"{spec.name} = {value!r} is outside {allowed.describe()}")
+            check_in_range(spec.name, getattr(self, spec.name), ranges[spec.name], DetectionError,
+                           integer=spec.type == "int")
         self._check_order("canny_low", "canny_high")
         self._check_order("door_width_min", "door_width_max")
         self._check_order("min_depth", "max_depth")

@@ -38,6 +38,7 @@ from door_trajopt.problem import (
     TrajectoryProblem,
     TrajoptError,
 )
+from door_trajopt.validation import require_in_range
 from door_trajopt.waypoint_constraints import WaypointFunction, WaypointValue, fixed_dof, waypoint_constraint
 
 FULL_MASK = np.ones(6)
@@ -103,9 +104,7 @@ class MotionOptions:
                   "door_stop_lateral": (0.0, 0.3), "release_retreat": (0.0, 0.3),
                   "tuck_duration": (0.0, 10.0), "doorway_arm_margin": (0.0, 0.5)}
         for name, (low, high) in checks.items():
-            value = getattr(self, name)
-            if not (np.isfinite(value) and low <= value <= high):
-                raise TrajoptError(f"MotionOptions.{name} = {value!r} is outside [{low:g}, {high:g}]")
+            require_in_range("MotionOptions", name, getattr(self, name), low, high)
 
 
 @dataclass(frozen=True)

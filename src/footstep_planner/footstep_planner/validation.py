@@ -1,10 +1,9 @@
-"""Range checks that raise :class:`FootstepPlannerError` naming the field and its allowed range."""
+"""Range checks that raise :class:`FootstepPlannerError` naming the field and its allowed range
+(the contract's one check, :func:`door_contract.ranges.check_in_range`)."""
 
 from __future__ import annotations
 
-import math
-
-from door_contract.ranges import FieldRange
+from door_contract.ranges import FieldRange, check_in_range
 from footstep_planner.errors import FootstepPlannerError
 
 __all__ = ["FieldRange", "check_range"]
@@ -15,10 +14,5 @@ def check_range(name: str, value: object, allowed: FieldRange, owner: str = "") 
 
     ``owner`` prefixes the message ("door angle = ...").
     """
-    label = f"{owner} {name}".strip()
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise FootstepPlannerError(
-            f"{label} must be a number in {allowed.describe()}, got {value!r}", field=name)
-    if not math.isfinite(value) or not allowed.admits(value):
-        raise FootstepPlannerError(
-            f"{label} = {value!r} is outside the allowed range {allowed.describe()}", field=name)
+    check_in_range(f"{owner} {name}".strip(), value, allowed,
+                   lambda message: FootstepPlannerError(message, field=name))
