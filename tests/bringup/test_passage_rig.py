@@ -129,6 +129,13 @@ def test_each_trial_draws_its_error_within_the_bounds():
     assert not np.any(shift) and yaw == 0.0
 
 
+@pytest.mark.parametrize("width", ["0.7", "nan", "1.2"])
+def test_a_door_width_outside_the_full_range_is_refused(width, capsys):
+    with pytest.raises(SystemExit) as stopped:
+        main(["--door-width", width])
+    assert stopped.value.code == 2 and "--door-width" in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("bounds", [["-1", "0"], ["0.5", "nan"], ["11", "1"]])
 def test_an_estimate_error_outside_its_range_is_refused(bounds, capsys):
     with pytest.raises(SystemExit) as stopped:

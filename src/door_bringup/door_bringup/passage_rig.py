@@ -315,18 +315,21 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
 
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
              planner_parameters: Mapping[str, object] | None = None, walk_from: float | None = None,
-             estimate_error: EstimateError = EstimateError()) -> PassageRun:
+             estimate_error: EstimateError = EstimateError(), door_width: float | None = None) -> PassageRun:
     """One door for the robot of ``kinematics``, the passage planned with the footstep planner
     node's defaults updated by ``planner_parameters``. The robot starts at the stand pose
     jittered by ``trial`` (0: none), or, with ``walk_from`` (m), that far in front of the door
     and walks to the stand pose first, as in the graph (``trial`` > 0: up to ±0.3 m aside and
     ±0.3 rad turned). Every plan uses the ground truth with ``estimate_error`` drawn for the
-    trial (its own random stream: the jitter does not change with it)."""
+    trial (its own random stream: the jitter does not change with it). ``door_width`` (m) is the
+    leaf's width, the DRC door's 0.914 m by default."""
     rng = np.random.default_rng(trial)
     error = estimate_error.drawn(np.random.default_rng([trial, 1]))
     robot = kinematics.profile.name
     parameters = {**NODE_DEFAULTS, **(planner_parameters or {})}
     door = DoorConfig(opening=opening, hinge_side=hinge)
+    if door_width is not None:
+        door = dataclasses.replace(door, width=door_width)
     peaks: dict[str, float] = {}
     if walk_from is None:
         jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
@@ -368,6 +371,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--estimate-error", type=float, nargs=2, default=(0.0, 0.0), metavar=("CM", "DEG"),
                         help="plan with the door estimated up to CM cm off along each axis and DEG degrees "
                              "turned, drawn per trial (the detector's errors; default: a perfect estimate)")
+    parser.add_argument("--door-width", type=float, default=None, metavar="M",
+                        help="the leaf's width (0.8-1.0 m, the full range of issue #13); default 0.914 m")
     parser.add_argument("--tuck-at", type=float, default=NODE_DEFAULTS["tuck_at"],
                         help="the footstep planner's tuck_at: the doorway walk ends this far before the door plane (m)")
     args = parser.parse_args(argv)
@@ -380,6 +385,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         validate_all(PLANNER_PARAMETERS, overrides)
     except ParameterRangeError as error:
         parser.error(str(error))
+    if args.door_width is not None and not 0.8 <= args.door_width <= 1.0:
+        parser.error(f"--door-width must be within [0.8, 1.0] m, got {args.door_width!r}")
     if not all(0.0 <= bound <= 10.0 for bound in args.estimate_error):
         parser.error(f"--estimate-error must be within [0, 10] cm and [0, 10] degrees, got {args.estimate_error}")
     estimate_error = EstimateError(args.estimate_error[0] / 100.0, np.radians(args.estimate_error[1]))
@@ -390,7 +397,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         for hinge in args.hinges:
             for trial in range(args.trials):
                 runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics, overrides,
-                                     args.walk_from, estimate_error))
+                                     args.walk_from, estimate_error, args.door_width))
                 print(runs[-1].line(), flush=True)
     through = sum(run.stage == WALKED_THROUGH and run.status == "success" for run in runs)
     fell = sum(run.status == OutcomeStatus.FELL.value for run in runs)
