@@ -18,10 +18,10 @@ WEIGHT = 90.0 * 9.81
 AT_THE_HAND = np.array([0.5, 0.0, 1.0])
 
 
-def run(stabilizer: Stabilizer, force: np.ndarray | None, seconds: float) -> list[np.ndarray]:
-    """Offsets while walking with ``force`` (N) at the hand (None: no contact) for ``seconds``."""
+def run(stabilizer: Stabilizer, force: np.ndarray | None, seconds: float, walking: bool = True) -> list[np.ndarray]:
+    """Offsets while walking (or standing) with ``force`` (N) at the hand (None: no contact) for ``seconds``."""
     wrench = ContactWrench.none() if force is None else ContactWrench(np.asarray(force, float), AT_THE_HAND)
-    return [stabilizer.update(DT, np.zeros(2), wrench, None, walking=True).copy()
+    return [stabilizer.update(DT, np.zeros(2), wrench, None, walking=walking).copy()
             for _ in range(int(round(seconds / DT)))]
 
 
@@ -50,9 +50,14 @@ def test_a_one_tick_strike_of_2_kN_barely_moves_the_com():
 
 
 def test_a_sustained_force_beyond_the_clip_counts_as_the_clip():
+    """Walking, the clip is max_walking_force (a pushed leaf escapes the hand: a lean against
+    more outlasted the force and the robot toppled); standing, max_force (beyond the dead band)."""
     options = StabilizerOptions(max_offset=0.2)
-    offsets = run(Stabilizer(options, WEIGHT), [0.0, 400.0, 0.0], 4.0)
-    assert offsets[-1][1] == pytest.approx(-options.max_force / WEIGHT, rel=0.02)
+    walking = run(Stabilizer(options, WEIGHT), [0.0, 400.0, 0.0], 4.0)
+    assert walking[-1][1] == pytest.approx(-options.max_walking_force / WEIGHT, rel=0.02)
+    standing = run(Stabilizer(options, WEIGHT), [0.0, 400.0, 0.0], 4.0, walking=False)
+    assert standing[-1][1] == pytest.approx(-(options.max_force / WEIGHT - options.force_deadband), rel=0.02)
+    assert options.max_walking_force < options.max_force
 
 
 def test_clipping_keeps_direction_and_point():
@@ -70,7 +75,7 @@ def test_reset_forgets_the_filtered_force():
     assert np.allclose(run(stabilizer, None, DT)[0], 0.0)
 
 
-@pytest.mark.parametrize("field, value", [("force_filter_s", -0.1), ("max_force", -1.0),
+@pytest.mark.parametrize("field, value", [("force_filter_s", -0.1), ("max_force", -1.0), ("max_walking_force", -1.0),
                                           ("force_filter_s", float("nan"))])
 def test_bad_options_are_refused_with_the_field_named(field, value):
     with pytest.raises(SimulationError, match=field):
