@@ -178,3 +178,20 @@ def test_the_wrist_of_a_hand_holding_the_lever_may_end_off_its_goal_within_its_o
     assert ExecutionConfig().goal_tolerance < error < 0.15 and status is OutcomeStatus.SUCCESS
     status, _ = _wrist_turned_against_the_lever(kinematics, 0.05)
     assert status is OutcomeStatus.FAILURE
+
+
+def test_a_hand_pressed_on_the_leaf_touches_the_door_and_a_blocked_arm_stops_straining(world, kinematics):
+    """Reaching 1 cm into the leaf below the lever: the fingertips land on the leaf
+    (``hand_touches_door``, the other hand not), the elbow is blocked (FAILURE names it: only the
+    wrist of a touching hand has held_wrist_tolerance), and the joints then hold where they are
+    instead of straining on towards the goal."""
+    assert not world.hand_touches_door(HAND)
+    into_leaf = -0.07 * world.handle_grasp_pose()[:3, 0] + np.array([0.0, 0.0, -0.12])  # standoff 0.06 m
+    result = reach_handle(world, kinematics, HAND, offset=into_leaf)
+    assert world.hand_touches_door(HAND) and not world.hand_touches_door(Side.LEFT)
+    assert result.status is OutcomeStatus.FAILURE and world.robot.wrist_joint(HAND) not in result.reason
+    blocked = result.reason.split()[0]
+    held_at = world.joint_positions()[blocked]
+    world.step(240)
+    assert world.joint_targets()[blocked] == pytest.approx(held_at, abs=0.02)
+    assert world.joint_positions()[blocked] == pytest.approx(held_at, abs=0.02)

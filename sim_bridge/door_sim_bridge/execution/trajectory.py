@@ -12,12 +12,17 @@ a monotone cubic (PCHIP: it never overshoots the waypoints, so it stays inside t
 a cubic Hermite spline when the points carry velocities. At every physics step the motors get
 the position for the end of that step. After the last point the command is held for
 ``settle_time``; the outcome is SUCCESS if every joint is then within ``goal_tolerance`` of its
-final position, else FAILURE naming the worst joint (e.g. an arm blocked by the door). The wrist
-of a hand that holds the handle (its last joint above the hand) has ``held_wrist_tolerance``
+final position, else FAILURE naming the worst joint (e.g. an arm blocked by the door), and the
+joints then hold where they are: a blocked arm that went on straining towards its goal moved the
+robot and its next plan's start (a pull door's failed turn: arm_right_6 0.21 rad further by the
+time the repeat arrived, the pelvis 10 cm towards the door). The wrist of a hand that holds the
+handle or touches the leaf or handle (its last joint above the hand) has ``held_wrist_tolerance``
 instead: a turn or swing is planned on the *estimated* lever axis and hinge, the lever holds the
 hand on its true arc, and the weak last wrist joint (TALOS: 6.6 N·m) is what gives way, 0.06-0.09 rad
 for an estimate off by the detector's ~0.6 cm / 0.5° (the turn failed so in 4 of 20 sideways rig
-doors). A grasp slip during the motion stops it at once with FAILURE.
+doors); a pull door's leaf resting on the blocking hand held the same joint 0.05-0.14 rad off the
+tuck's goal (5 of 6 rig doors stopped there). A grasp slip during the motion stops it at once with
+FAILURE.
 """
 
 from __future__ import annotations
@@ -205,7 +210,8 @@ class TrajectoryExecution(Execution):
 
     def _judge(self) -> None:
         reached = self.world.joint_positions()
-        held = {self.world.robot.wrist_joint(side) for side in self.world.profile.arms if self.world.holding(side)}
+        held = {self.world.robot.wrist_joint(side) for side in self.world.profile.arms
+                if self.world.holding(side) or self.world.hand_touches_door(side)}
         tolerances = {name: self._config.held_wrist_tolerance if name in held else self._config.goal_tolerance
                       for name in self.final_positions}
         excess = {name: abs(reached[name] - goal) - tolerances[name] for name, goal in self.final_positions.items()}
@@ -213,6 +219,7 @@ class TrajectoryExecution(Execution):
         if excess[worst] <= 0.0:
             self._finish(OutcomeStatus.SUCCESS)
         else:
+            self._hold()  # a blocked arm must not go on straining towards its goal
             error = excess[worst] + tolerances[worst]
             self._finish(OutcomeStatus.FAILURE, f"{worst} ended {error:.3f} rad from its goal "
                                                 f"(tolerance {tolerances[worst]:.3f} rad)")

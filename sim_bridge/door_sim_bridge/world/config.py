@@ -258,7 +258,7 @@ class ExecutionConfig:
 
     settle_time: float = 0.25  # s held at the final point before judging
     goal_tolerance: float = 0.05  # rad; a joint farther than this at the end is a FAILURE
-    held_wrist_tolerance: float = 0.15  # rad, instead, for the wrist of a hand holding the handle
+    held_wrist_tolerance: float = 0.15  # rad, instead, for the wrist of a hand holding the handle or touching the door
     # (the lever's true arc holds it off a path planned on the estimated axis: 0.06-0.09 rad seen)
     start_tolerance: float = 0.2  # rad; a first point at t = 0 farther than this is REJECTED
     velocity_limit_scale: float = 1.0  # x URDF velocity limit allowed between waypoints

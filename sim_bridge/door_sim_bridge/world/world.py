@@ -459,6 +459,14 @@ class DoorWorld:
         """True when the last grasp of ``side`` ended in a slip (cleared by the next close)."""
         return self._grasps.slipped(side)
 
+    def hand_touches_door(self, side: Side) -> bool:
+        """Whether the ``side`` hand (the links below its wrist joint) touches the leaf or the
+        handle this step: the door then bears on the hand as a grasp does."""
+        hand = self.robot.descendants(self.robot.joint_link_index(self.robot.wrist_joint(side)))
+        moving = {self.door.link_index(part) for part in DoorPart}
+        contacts = self._client.getContactPoints(bodyA=self.robot.body, bodyB=self.door.body)
+        return any(contact[3] in hand and contact[4] in moving for contact in contacts)
+
     def hand_handle_distance(self, side: Side) -> float:
         """Distance (m) between the ``side`` TCP and the handle grasp point."""
         return self._grasps.distance(side)
