@@ -86,6 +86,7 @@ def test_hand_turns_the_handle_and_pushes_the_door_open(world, kinematics):
     assert world.hand_handle_distance(HAND) < 0.01
     assert world.peak_grasp_force(HAND) < 0.5 * world.config.grasp_break_force
     assert not world.fallen
+    assert np.linalg.norm(world.balance.measure().wrench.force) > 1.0  # an open leaf's force is leant against
     feet_after = world.foot_placements()
     for foot, before in feet_before.items():
         assert np.hypot(feet_after[foot].x - before.x, feet_after[foot].y - before.y) < 0.01
@@ -195,3 +196,21 @@ def test_a_hand_pressed_on_the_leaf_touches_the_door_and_a_blocked_arm_stops_str
     world.step(240)
     assert world.joint_targets()[blocked] == pytest.approx(held_at, abs=0.02)
     assert world.joint_positions()[blocked] == pytest.approx(held_at, abs=0.02)
+
+
+def test_standing_the_robot_does_not_lean_against_a_hand_holding_a_closed_leafs_lever(kinematics):
+    """The lever pressed against its stop by the wrist: the grasp bears the force, and the
+    balance's measured external force leaves it out while the leaf is closed (a lean would
+    drag the hand and press it harder: the pelvis ran 10 cm towards the door at the end of a
+    pull door's turn). Once the leaf is open it counts (the turn-and-push test above)."""
+    config = WorldConfig(stance=GRASP_STANCE, posture_overrides=manipulation_posture())
+    with DoorWorld(config) as world:
+        reach_handle(world, kinematics, HAND)
+        assert world.grasp(HAND, close=True).success
+        base_before = world.base_pose()[:3, 3]
+        wrist = world.robot.wrist_joint(HAND)
+        TrajectoryExecution(world, [1.0], [wrist], [[world.joint_positions()[wrist] - 0.12]]).run()
+        world.step(240)
+        assert world.grasp_force(HAND) > 5.0 and world.door_state().hinge_angle < 0.03
+        assert np.linalg.norm(world.balance.measure().wrench.force) < 1e-9
+        assert np.linalg.norm(world.base_pose()[:3, 3] - base_before) < 0.01

@@ -50,14 +50,14 @@ def test_a_one_tick_strike_of_2_kN_barely_moves_the_com():
 
 
 def test_a_sustained_force_beyond_the_clip_counts_as_the_clip():
-    """Walking and standing (there beyond the dead band), a force over max_force leans as
-    max_force: a pushed leaf escapes the hand, and a hand held on the lever is pressed harder by
-    the lean itself."""
+    """Walking, the clip is max_walking_force (a pushed leaf escapes the hand: a lean against
+    more outlasted the force and the robot toppled); standing, max_force (beyond the dead band)."""
     options = StabilizerOptions(max_offset=0.2)
     walking = run(Stabilizer(options, WEIGHT), [0.0, 400.0, 0.0], 4.0)
-    assert walking[-1][1] == pytest.approx(-options.max_force / WEIGHT, rel=0.02)
+    assert walking[-1][1] == pytest.approx(-options.max_walking_force / WEIGHT, rel=0.02)
     standing = run(Stabilizer(options, WEIGHT), [0.0, 400.0, 0.0], 4.0, walking=False)
     assert standing[-1][1] == pytest.approx(-(options.max_force / WEIGHT - options.force_deadband), rel=0.02)
+    assert options.max_walking_force < options.max_force
 
 
 def test_clipping_keeps_direction_and_point():
@@ -75,7 +75,7 @@ def test_reset_forgets_the_filtered_force():
     assert np.allclose(run(stabilizer, None, DT)[0], 0.0)
 
 
-@pytest.mark.parametrize("field, value", [("force_filter_s", -0.1), ("max_force", -1.0),
+@pytest.mark.parametrize("field, value", [("force_filter_s", -0.1), ("max_force", -1.0), ("max_walking_force", -1.0),
                                           ("force_filter_s", float("nan"))])
 def test_bad_options_are_refused_with_the_field_named(field, value):
     with pytest.raises(SimulationError, match=field):

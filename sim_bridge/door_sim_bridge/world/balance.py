@@ -27,9 +27,9 @@ class BalanceLoop:
     """Walking controller + sensors + motors of the physical robot (one per world)."""
 
     def __init__(self, client: PhysicsClient, robot: SimRobot, floor: int, door_body: int,
-                 config: WorldConfig, holding: Callable[[Side], bool]) -> None:
+                 config: WorldConfig, holding: Callable[[Side], bool], leaf_closed: Callable[[], bool]) -> None:
         self._client, self._robot, self._floor, self._door = client, robot, floor, door_body
-        self._config, self._holding = config, holding
+        self._config, self._holding, self._leaf_closed = config, holding, leaf_closed
         self.controller = WalkingController(robot.urdf_text, robot.profile, config.gait, config.stabilizer,
                                             config.time_step)
         self.fall: str | None = None
@@ -47,6 +47,12 @@ class BalanceLoop:
         handle, or while walking with the hand on the door (the blocking hand on the leaf, the
         fingers pushing a leaf open).
 
+        Nor, standing, a hand holding the handle of a closed leaf (turning it): the arm's joints
+        are held relative to the pelvis, so a lean drags the hand and presses it harder against
+        the lever; at the end of a pull door's turn the force rose, the robot leant towards it,
+        and the pelvis ran 10 cm towards the door in 1.5 s (the lean's clip, 100 N, stopped it;
+        the turn failed). A closed leaf holds no more than its lever's spring.
+
         Not a hand pressing a latched door while standing: leaning against it presses the
         hand harder, the force grows, the lean with it (seen: 118 N and a 10 cm lean off a
         mis-placed approach). The CoP feedback still catches what that leaves out. Nor a hand
@@ -59,8 +65,9 @@ class BalanceLoop:
         body = [(force, point) for link, force, point in contacts if link not in every_hand]
         touching = {side for side, links in hands.items() if any(link in links for link, _, _ in contacts)}
         gravity, walking = self._config.gravity, self.walking
+        held = walking or not self._leaf_closed()
         return body + [(self._robot.wrist_force(side, gravity), self._robot.tcp_pose(side)[:3, 3])
-                       for side in hands if (walking and side in touching) or self._holding(side)]
+                       for side in hands if (walking and side in touching) or (held and self._holding(side))]
 
     def control(self) -> None:
         """Set this step's joint targets (nothing once fallen)."""

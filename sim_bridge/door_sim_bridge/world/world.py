@@ -49,6 +49,7 @@ from door_sim_bridge.world.robot_urdf import sole_placement_link
 from door_sim_bridge.world.transforms import invert, is_rigid
 
 SOLE_CLEARANCE = 0.0005  # m between the lowest sole and the floor when the robot is placed
+LEAF_CLOSED = 0.03  # rad; a leaf nearer its frame than this holds a hand only through its lever
 
 
 class EventKind(str, Enum):
@@ -122,7 +123,11 @@ class DoorWorld:
                                        self.config.grasp_model)
         # the floor exists exactly for the physical robot
         self.balance = (BalanceLoop(self._client, self.robot, self._floor, self.door.body, self.config,
-                                    self._grasps.holding) if self._floor is not None else None)
+                                    self._grasps.holding, self._leaf_closed) if self._floor is not None else None)
+
+    def _leaf_closed(self) -> bool:
+        """The leaf within ``LEAF_CLOSED`` of its frame (it can bear on a hand only through its lever)."""
+        return self.door.state().hinge_angle < LEAF_CLOSED
 
     def _set_sole_friction(self, friction: float) -> None:
         for link in self.profile.feet.values():
