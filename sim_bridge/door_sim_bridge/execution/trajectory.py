@@ -13,9 +13,8 @@ a cubic Hermite spline when the points carry velocities. At every physics step t
 the position for the end of that step. After the last point the command is held for
 ``settle_time``; the outcome is SUCCESS if every joint is then within ``goal_tolerance`` of its
 final position, else FAILURE naming the worst joint (e.g. an arm blocked by the door), and the
-joints then hold where they are: a blocked arm that went on straining towards its goal moved the
-robot and its next plan's start (a pull door's failed turn: arm_right_6 0.21 rad further by the
-time the repeat arrived, the pelvis 10 cm towards the door). The wrist of a hand that holds the
+joints then hold where they are, as after a slip: a blocked arm does not go on straining
+towards a goal it cannot reach while the next plan is made. The wrist of a hand that holds the
 handle or touches the leaf or handle (its last joint above the hand) has ``held_wrist_tolerance``
 instead: a turn or swing is planned on the *estimated* lever axis and hinge, the lever holds the
 hand on its true arc, and the weak last wrist joint (TALOS: 6.6 N·m) is what gives way, 0.06-0.09 rad

@@ -65,9 +65,9 @@ class BalanceLoop:
         body = [(force, point) for link, force, point in contacts if link not in every_hand]
         touching = {side for side, links in hands.items() if any(link in links for link, _, _ in contacts)}
         gravity, walking = self._config.gravity, self.walking
-        held = walking or not self._leaf_closed()
         return body + [(self._robot.wrist_force(side, gravity), self._robot.tcp_pose(side)[:3, 3])
-                       for side in hands if (walking and side in touching) or (held and self._holding(side))]
+                       for side in hands if (walking and side in touching)
+                       or (self._holding(side) and (walking or not self._leaf_closed()))]
 
     def control(self) -> None:
         """Set this step's joint targets (nothing once fallen)."""
