@@ -16,7 +16,9 @@ from rosbags.interfaces import QosDurability, QosReliability
 from std_msgs.msg import String
 
 from door_bringup.bags.qos import offered_qos, playback_profile
+from door_bringup.bags.recorder import message_digest, recorded_key
 from door_bringup.bags.storage import BagError, BagWriter, Compression, StorageFormat, read_messages, recorded_qos
+from door_contract.converters.diagnostics import status_values
 from door_contract.node_support import create_contract_publisher
 from door_contract.qos import matching_subscription
 from door_contract.topics import Topics
@@ -81,13 +83,16 @@ def test_player_and_recorder_profiles_follow_the_offers():
 
 @pytest.mark.ros
 def test_recorder_stores_offered_qos_and_the_latched_message_it_joined_after(workspace, rclpy_context, tmp_path):
+    """... and its heartbeat names a digest of the last message it wrote on each latched topic."""
     node = rclpy.create_node("bag_qos_test", context=rclpy_context)
     state = create_contract_publisher(node, Topics.TASK_STATE)
     operator = create_contract_publisher(node, Topics.OPERATOR)
     state.publish(String(data="WALK_TO_DOOR"))  # before the recorder exists: only latching delivers it
-    recorded = []  # the recorder's own count, on /diagnostics
-    node.create_subscription(DiagnosticArray, Topics.DIAGNOSTICS.name, lambda a: recorded.extend(
-        int(kv.value) for s in a.status if s.name == "bag_recorder" for kv in s.values if kv.key == "recorded"), 10)
+    heartbeats = []  # the recorder's own counts and digests, on /diagnostics
+    node.create_subscription(DiagnosticArray, Topics.DIAGNOSTICS.name, lambda a: heartbeats.append(
+        status_values(a, "bag_recorder")), 10)
+    def recorded(key: str) -> str | None:
+        return next((h[key] for h in reversed(heartbeats) if h and key in h), None)
     executor = executor_for(node, rclpy_context)
     recorder = subprocess.Popen([str(workspace.executable("door_bringup", "bag_record")), str(tmp_path / "bag"),
                                  "--storage", "mcap", "--compression", "zstd",
@@ -97,7 +102,12 @@ def test_recorder_stores_offered_qos_and_the_latched_message_it_joined_after(wor
         assert spin_until(executor, lambda: operator.get_subscription_count() > 0
                           and state.get_subscription_count() > 0, 60.0)
         operator.publish(String(data="approve 3"))
-        assert spin_until(executor, lambda: recorded and recorded[-1] >= 2, 60.0)
+        assert spin_until(executor, lambda: int(recorded("recorded") or 0) >= 2, 60.0)
+        assert recorded(recorded_key(Topics.TASK_STATE.name)) == message_digest(String(data="WALK_TO_DOOR"))
+        assert recorded(recorded_key(Topics.OPERATOR.name)) is None  # volatile: no digest
+        state.publish(String(data="DONE"))  # what the main job waits for before it stops the graph
+        done = message_digest(String(data="DONE"))
+        assert spin_until(executor, lambda: recorded(recorded_key(Topics.TASK_STATE.name)) == done, 60.0)
     finally:
         recorder.send_signal(signal.SIGINT)
         output = recorder.communicate(timeout=30)[0]
@@ -105,8 +115,9 @@ def test_recorder_stores_offered_qos_and_the_latched_message_it_joined_after(wor
     qos = recorded_qos(tmp_path / "bag")
     assert [q.durability for q in qos[Topics.TASK_STATE.name]] == [QosDurability.TRANSIENT_LOCAL], output
     assert [q.durability for q in qos[Topics.OPERATOR.name]] == [QosDurability.VOLATILE]
-    words = {m.topic: deserialize_message(m.data, String).data for m in read_messages(tmp_path / "bag")}
-    assert words == {Topics.TASK_STATE.name: "WALK_TO_DOOR", Topics.OPERATOR.name: "approve 3"}, output
+    words = [(m.topic, deserialize_message(m.data, String).data) for m in read_messages(tmp_path / "bag")]
+    assert sorted(words) == sorted([(Topics.TASK_STATE.name, "WALK_TO_DOOR"), (Topics.OPERATOR.name, "approve 3"),
+                                    (Topics.TASK_STATE.name, "DONE")]), output
     node.destroy_node()
 
 

@@ -136,6 +136,14 @@ def test_a_door_width_outside_the_full_range_is_refused(width, capsys):
     assert stopped.value.code == 2 and "--door-width" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize(("option", "value"), [("--handle-height", "0.8"), ("--handle-height", "nan"),
+                                               ("--wind", "-0.5"), ("--wind", "4")])
+def test_a_handle_height_or_wind_outside_its_range_is_refused(option, value, capsys):
+    with pytest.raises(SystemExit) as stopped:
+        main([option, value])
+    assert stopped.value.code == 2 and option in capsys.readouterr().err
+
+
 @pytest.mark.parametrize("bounds", [["-1", "0"], ["0.5", "nan"], ["11", "1"]])
 def test_an_estimate_error_outside_its_range_is_refused(bounds, capsys):
     with pytest.raises(SystemExit) as stopped:

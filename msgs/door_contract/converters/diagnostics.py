@@ -28,3 +28,11 @@ def diagnostic_array(node_name: str, health: Health, message: str,
     status.values = [KeyValue(key=str(k), value=str(v)) for k, v in (values or {}).items()]
     array.status = [status]
     return array
+
+
+def status_values(array: DiagnosticArray, node_name: str) -> dict[str, str] | None:
+    """The ``values`` of ``node_name``'s status in ``array`` (None when it holds none)."""
+    for status in array.status:
+        if status.name == node_name:
+            return {pair.key: pair.value for pair in status.values}
+    return None

@@ -28,10 +28,12 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 import rclpy
+from diagnostic_msgs.msg import DiagnosticArray
 from nav_msgs.msg import Odometry
 from rclpy.node import Node
 from std_msgs.msg import String
 
+from door_bringup.bags.recorder import message_digest, recorded_key
 from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH, NodeLaunch
 from door_bringup.interrupts import interrupt_on_sigterm
 from door_bringup.params_files import ROBOT_PARAMETER, robot_nodes
@@ -41,6 +43,7 @@ from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.run_plots import plot_run
 from door_bringup.table_one import format_table, phase_rows
 from door_bringup.workspace import Workspace, repository_root
+from door_contract.converters.diagnostics import status_values
 from door_contract.network import keep_discovery_local
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import TaskReport, decode
@@ -49,6 +52,9 @@ from door_contract.vocabulary import TaskEnd
 from door_fsm.operator_commands import request_id_of
 
 RECORDER = NodeLaunch("door_bringup", "bag_record", "bag_recorder")
+RECORDER_CONFIRM_S = 30.0
+"""s (wall clock) the job waits for the recorder to say the terminal state is in the bag before it
+stops the graph: a safety net, the wait ends on the recorder's heartbeat (twice a second)."""
 
 
 @dataclass(frozen=True)
@@ -111,7 +117,9 @@ class ScriptedOperator(Node):
         self.report: TaskReport | None = None
         self.states: list[str] = []
         self.base_xy: tuple[float, float] | None = None
+        self.recorded: dict[str, str] = {}  # the recorder's heartbeat: latched topic → digest of its last message
         create_contract_subscription(self, Topics.ODOM, self._on_odom)
+        create_contract_subscription(self, Topics.DIAGNOSTICS, self._on_diagnostics)
         self.command_pub = create_contract_publisher(self, Topics.OPERATOR)
         self.progress = ProgressMonitor(self)
         create_contract_subscription(self, Topics.APPROVAL_REQUEST, self._on_request)
@@ -133,6 +141,15 @@ class ScriptedOperator(Node):
 
     def _on_report(self, msg: String) -> None:
         self.report = decode(TaskReport, msg.data)
+
+    def _on_diagnostics(self, msg: DiagnosticArray) -> None:
+        values = status_values(msg, RECORDER.node_name)
+        if values is not None:
+            self.recorded = values
+
+    def has_recorded(self, topic: str, message: object) -> bool:
+        """Whether the recorder's last message on the latched ``topic`` is ``message``."""
+        return self.recorded.get(recorded_key(topic)) == message_digest(message)
 
     def _on_odom(self, msg: Odometry) -> None:
         self.base_xy = (round(msg.pose.pose.position.x, 3), round(msg.pose.pose.position.y, 3))
@@ -159,6 +176,8 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
             print(f"live view: Foxglove → open connection → ws://127.0.0.1:{options.foxglove_port}; layout "
                   f"{workspace.root / 'src/door_viz/layouts/door_task.json'}", flush=True)
         report = _wait_for_report(operator, supervisor, options.timeout_s)
+        if options.record and operator.report is not None:  # the FSM ended and published its state
+            _wait_until_recorded(operator, String(data=str(report["final_state"])))
     finally:
         operator.progress.printer.interrupt()
         codes = {**supervisor.stop(), **recorder.stop()}
@@ -168,6 +187,19 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
     report["final_base_xy"] = operator.base_xy
     report["exit_codes"] = codes
     return report
+
+
+def _wait_until_recorded(operator: ScriptedOperator, terminal_state: String) -> None:
+    """Keep the graph up until the recorder has written the FSM's terminal state: stopped at once,
+    the bag of a push door that reached DONE once ended at WALK_THROUGH (the recorder, behind
+    under load, had not taken the latched DONE before the FSM's process was gone)."""
+    deadline = time.monotonic() + RECORDER_CONFIRM_S
+    while not operator.has_recorded(Topics.TASK_STATE.name, terminal_state):
+        if time.monotonic() > deadline:
+            print(f"warning: the bag may lack the terminal state {terminal_state.data} "
+                  f"(the recorder did not confirm it within {RECORDER_CONFIRM_S:g} s)", flush=True)
+            return
+        rclpy.spin_once(operator, timeout_sec=0.1)
 
 
 def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, timeout_s: float) -> dict:

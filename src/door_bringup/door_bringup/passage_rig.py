@@ -49,7 +49,7 @@ from door_fsm.work import STATE_WORK, WorkKind
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_sim_bridge.execution import ExecutionResult, FootstepExecution, TrajectoryExecution
-from door_sim_bridge.world import DoorConfig, DoorWorld, StanceConfig, WorldConfig
+from door_sim_bridge.world import DoorConfig, DoorWorld, StanceConfig, WindConfig, WorldConfig
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import MotionLibrary
@@ -315,21 +315,22 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
 
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
              planner_parameters: Mapping[str, object] | None = None, walk_from: float | None = None,
-             estimate_error: EstimateError = EstimateError(), door_width: float | None = None) -> PassageRun:
+             estimate_error: EstimateError = EstimateError(), door_shape: Mapping[str, object] | None = None,
+             wind: float = 0.0) -> PassageRun:
     """One door for the robot of ``kinematics``, the passage planned with the footstep planner
     node's defaults updated by ``planner_parameters``. The robot starts at the stand pose
     jittered by ``trial`` (0: none), or, with ``walk_from`` (m), that far in front of the door
     and walks to the stand pose first, as in the graph (``trial`` > 0: up to ±0.3 m aside and
     ±0.3 rad turned). Every plan uses the ground truth with ``estimate_error`` drawn for the
-    trial (its own random stream: the jitter does not change with it). ``door_width`` (m) is the
-    leaf's width, the DRC door's 0.914 m by default."""
+    trial (its own random stream: the jitter does not change with it). ``door_shape`` replaces
+    :class:`DoorConfig` fields (``width``, ``handle_height``: the DRC door's 0.914 m and 0.91 m by
+    default); ``wind`` (N·m) is the amplitude of the wind on the hinge, as the Monte-Carlo's."""
     rng = np.random.default_rng(trial)
     error = estimate_error.drawn(np.random.default_rng([trial, 1]))
     robot = kinematics.profile.name
     parameters = {**NODE_DEFAULTS, **(planner_parameters or {})}
-    door = DoorConfig(opening=opening, hinge_side=hinge)
-    if door_width is not None:
-        door = dataclasses.replace(door, width=door_width)
+    door = dataclasses.replace(DoorConfig(opening=opening, hinge_side=hinge, wind=WindConfig(amplitude=wind)),
+                               **(door_shape or {}))
     peaks: dict[str, float] = {}
     if walk_from is None:
         jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
@@ -373,6 +374,10 @@ def main(argv: Sequence[str] | None = None) -> int:
                              "turned, drawn per trial (the detector's errors; default: a perfect estimate)")
     parser.add_argument("--door-width", type=float, default=None, metavar="M",
                         help="the leaf's width (0.8-1.0 m, the full range of issue #13); default 0.914 m")
+    parser.add_argument("--handle-height", type=float, default=None, metavar="M",
+                        help="the lever's height (0.85-1.10 m, the full range of issue #13); default 0.91 m")
+    parser.add_argument("--wind", type=float, default=0.0, metavar="NM",
+                        help="wind on the hinge, amplitude in N·m (0-3, as the Monte-Carlo's); default none")
     parser.add_argument("--tuck-at", type=float, default=NODE_DEFAULTS["tuck_at"],
                         help="the footstep planner's tuck_at: the doorway walk ends this far before the door plane (m)")
     args = parser.parse_args(argv)
@@ -387,9 +392,15 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error(str(error))
     if args.door_width is not None and not 0.8 <= args.door_width <= 1.0:
         parser.error(f"--door-width must be within [0.8, 1.0] m, got {args.door_width!r}")
+    if args.handle_height is not None and not 0.85 <= args.handle_height <= 1.10:
+        parser.error(f"--handle-height must be within [0.85, 1.10] m, got {args.handle_height!r}")
+    if not 0.0 <= args.wind <= 3.0:
+        parser.error(f"--wind must be within [0, 3] N·m, got {args.wind!r}")
     if not all(0.0 <= bound <= 10.0 for bound in args.estimate_error):
         parser.error(f"--estimate-error must be within [0, 10] cm and [0, 10] degrees, got {args.estimate_error}")
     estimate_error = EstimateError(args.estimate_error[0] / 100.0, np.radians(args.estimate_error[1]))
+    door_shape = {name: value for name, value in (("width", args.door_width), ("handle_height", args.handle_height))
+                  if value is not None}
     check_robot(parser, args.robot)
     kinematics = RobotKinematics(load_profile(args.robot))
     runs = []
@@ -397,7 +408,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         for hinge in args.hinges:
             for trial in range(args.trials):
                 runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics, overrides,
-                                     args.walk_from, estimate_error, args.door_width))
+                                     args.walk_from, estimate_error, door_shape, args.wind))
                 print(runs[-1].line(), flush=True)
     through = sum(run.stage == WALKED_THROUGH and run.status == "success" for run in runs)
     fell = sum(run.status == OutcomeStatus.FELL.value for run in runs)

@@ -6,9 +6,11 @@
 Subscribes with raw (serialized) callbacks, so messages are stored byte-identical; new
 topics are picked up while recording as soon as a publisher offers them (as ``ros2 bag record``
 does), each with the QoS its publishers offer (stored in the bag, so a player restores
-transient-local topics; :mod:`door_bringup.bags.qos`). Ctrl-C / SIGTERM writes what is still queued
-(:data:`DRAIN_S`) and closes the bag
-cleanly. An output that exists or cannot be created ends with one line and exit code 7
+transient-local topics; :mod:`door_bringup.bags.qos`). Its heartbeat on ``/diagnostics`` names,
+for every latched topic, a digest of the last message it wrote (:func:`recorded_key`,
+:func:`message_digest`), so whoever stops it can first wait until a latched message (the FSM's
+terminal state) is in the bag. Ctrl-C / SIGTERM writes what is still queued (:data:`DRAIN_S`) and
+closes the bag cleanly. An output that exists or cannot be created ends with one line and exit code 7
 (:mod:`door_bringup.bags.exit_codes`); ``--compression zstd`` without ``--storage mcap`` is a
 usage error (2).
 """
@@ -17,10 +19,13 @@ from __future__ import annotations
 
 import argparse
 import sys
+import zlib
 from collections.abc import Callable
 from pathlib import Path
 
 from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy
+from rclpy.serialization import deserialize_message, serialize_message
 from rclpy.subscription import Subscription
 
 from door_bringup.bags.exit_codes import exit_code_for
@@ -37,6 +42,18 @@ DRAIN_S = 2.0
 the graph, whose last messages (a fall's outcome, the FAILED state) were still queued and lost."""
 
 
+def recorded_key(topic: str) -> str:
+    """The recorder's heartbeat key for the digest of the last message written on ``topic``."""
+    return f"recorded {topic}"
+
+
+def message_digest(message: object) -> str:
+    """CRC-32 of ``message`` serialized by rclpy, as the recorder's heartbeat reports it. The
+    recorder deserializes what it received first: the publisher's CDR padding bytes are not
+    rclpy's, so the received bytes of an equal message need not be equal."""
+    return f"{zlib.crc32(serialize_message(message)):08x}"
+
+
 class BagRecorder(Node):
     def __init__(self, writer: BagWriter, output: Path, storage: StorageFormat,
                  topics: tuple[str, ...] | None) -> None:
@@ -44,6 +61,7 @@ class BagRecorder(Node):
         self.writer = writer
         self.wanted = set(topics) if topics else None
         self.subscriptions_by_topic: dict[str, Subscription] = {}
+        self.latched_topics: set[str] = set()
         self.count = 0
         self.heartbeat = Heartbeat(self, period_s=0.5)
         self.discover()
@@ -62,15 +80,20 @@ class BagRecorder(Node):
             if not offered:
                 continue  # known only from a subscriber so far: recorded once a publisher offers its QoS
             self.writer.add_topic(topic, types[0], [offered_qos(profile) for profile in offered])
+            if all(profile.durability == DurabilityPolicy.TRANSIENT_LOCAL for profile in offered):
+                self.latched_topics.add(topic)
             self.subscriptions_by_topic[topic] = self.create_subscription(
-                msg_type, topic, self._writer_for(topic, types[0]), matching_subscription(offered, qos_for(topic)),
+                msg_type, topic, self._writer_for(topic, types[0], msg_type), matching_subscription(offered, qos_for(topic)),
                 raw=True)
 
-    def _writer_for(self, topic: str, type_name: str) -> Callable[[bytes], None]:
+    def _writer_for(self, topic: str, type_name: str, msg_type: type) -> Callable[[bytes], None]:
         def write(data: bytes) -> None:
             self.writer.write(topic, type_name, self.get_clock().now().nanoseconds, data)
             self.count += 1
             self.heartbeat.update(Health.OK, "recording", recorded=self.count)
+            if topic in self.latched_topics:
+                self.heartbeat.update(Health.OK, "recording", **{recorded_key(topic): message_digest(
+                    deserialize_message(data, msg_type))})
         return write
 
     def destroy_node(self) -> None:
