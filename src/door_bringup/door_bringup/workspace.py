@@ -13,6 +13,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
+from door_robot.locations import find_checkout
+
 
 class WorkspaceError(RuntimeError):
     """The workspace is not built, or a package/executable is not in it."""
@@ -27,16 +29,13 @@ def repository_root() -> Path:
 
 
 def find_repository_root(start: Path) -> Path:
-    """The nearest folder above ``start`` holding ``ros_ws/src`` and ``params/`` (the checkout).
-
-    A fixed number of levels up was right for the sources only: from the installed copy it
-    named ``ros_ws/install/door_bringup/lib`` (issue #12: ``door_graph --check`` failed).
-    """
-    for folder in start.resolve().parents:
-        if (folder / "ros_ws" / "src").is_dir() and (folder / "params").is_dir():
-            return folder
-    raise WorkspaceError(f"no checkout (a folder with ros_ws/src and params/) above {start}; "
-                         f"set DOOR_WORKSPACE")
+    """The checkout above ``start`` (:func:`door_robot.locations.find_checkout`); WorkspaceError
+    outside one."""
+    checkout = find_checkout(start)
+    if checkout is None:
+        raise WorkspaceError(f"no checkout (a folder with ros_ws/src and params/) above {start}; "
+                             f"set DOOR_WORKSPACE")
+    return checkout
 
 
 @dataclass(frozen=True)

@@ -14,9 +14,20 @@ import sysconfig
 from pathlib import Path
 
 
-def repository_root() -> Path:
-    """The checkout this module belongs to (src/door_robot/door_robot → three levels up)."""
-    return Path(__file__).resolve().parents[3]
+def find_checkout(start: Path) -> Path | None:
+    """The nearest folder above ``start`` holding ``ros_ws/src`` and ``params/`` (the checkout),
+    None outside one. A fixed number of levels up was right for the sources only: from the
+    colcon install inside the checkout (``ros_ws/install/<package>/lib/…``) it named ``lib``
+    (issue #12: ``door_graph --check`` failed)."""
+    for folder in start.resolve().parents:
+        if (folder / "ros_ws" / "src").is_dir() and (folder / "params").is_dir():
+            return folder
+    return None
+
+
+def checkout_of_this_module() -> Path | None:
+    """The checkout these sources (or their install inside it) belong to; None when installed elsewhere."""
+    return find_checkout(Path(__file__))
 
 
 PROFILES_SHARE = "profiles"
@@ -28,16 +39,21 @@ def params_dir() -> Path:
     ``share/door_robot/profiles`` (installed; found through the ament index)."""
     if "DOOR_PARAMS_DIR" in os.environ:
         return Path(os.environ["DOOR_PARAMS_DIR"])
-    in_checkout = repository_root() / "params"
-    if in_checkout.is_dir():
-        return in_checkout
+    checkout = checkout_of_this_module()
+    if checkout is not None:
+        return checkout / "params"
     from ament_index_python.packages import get_package_share_directory
 
     return Path(get_package_share_directory("door_robot")) / PROFILES_SHARE
 
 
 def shared_data_dir() -> Path:
-    return Path(os.environ.get("DOOR_SHARED_DATA", repository_root().parent / "shared" / "data"))
+    """``$DOOR_SHARED_DATA``, else ``../shared/data`` beside the checkout (beside the working
+    directory when installed elsewhere)."""
+    if "DOOR_SHARED_DATA" in os.environ:
+        return Path(os.environ["DOOR_SHARED_DATA"])
+    checkout = checkout_of_this_module() or Path.cwd()
+    return checkout.parent / "shared" / "data"
 
 
 def cmeel_share_dir() -> Path:
