@@ -315,7 +315,7 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
 
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
              planner_parameters: Mapping[str, object] | None = None, walk_from: float | None = None,
-             estimate_error: EstimateError = EstimateError(), door_shape: Mapping[str, object] | None = None,
+             estimate_error: EstimateError = EstimateError(), door_shape: Mapping[str, float] | None = None,
              wind: float = 0.0) -> PassageRun:
     """One door for the robot of ``kinematics``, the passage planned with the footstep planner
     node's defaults updated by ``planner_parameters``. The robot starts at the stand pose
