@@ -135,6 +135,21 @@ class EstimateError:
         return rng.uniform(-1.0, 1.0, 3) * self.position, float(rng.uniform(-1.0, 1.0) * self.yaw)
 
 
+@dataclass(frozen=True)
+class DoorShape:
+    """The leaf's width and the lever's height (m); None keeps :class:`DoorConfig`'s."""
+
+    width: float | None = None
+    handle_height: float | None = None
+
+    def applied(self, door: DoorConfig) -> DoorConfig:
+        if self.width is not None:
+            door = dataclasses.replace(door, width=self.width)
+        if self.handle_height is not None:
+            door = dataclasses.replace(door, handle_height=self.handle_height)
+        return door
+
+
 def erroneous_estimate(estimate: DoorEstimate, shift: np.ndarray, yaw: float) -> DoorEstimate:
     """``estimate`` moved rigidly: turned by ``yaw`` about the vertical through the handle,
     then shifted by ``shift`` = (along its normal, along the wall, up) in metres."""
@@ -315,22 +330,20 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
 
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
              planner_parameters: Mapping[str, object] | None = None, walk_from: float | None = None,
-             estimate_error: EstimateError = EstimateError(), door_shape: Mapping[str, float] | None = None,
+             estimate_error: EstimateError = EstimateError(), door_shape: DoorShape = DoorShape(),
              wind: float = 0.0) -> PassageRun:
     """One door for the robot of ``kinematics``, the passage planned with the footstep planner
     node's defaults updated by ``planner_parameters``. The robot starts at the stand pose
     jittered by ``trial`` (0: none), or, with ``walk_from`` (m), that far in front of the door
     and walks to the stand pose first, as in the graph (``trial`` > 0: up to ±0.3 m aside and
     ±0.3 rad turned). Every plan uses the ground truth with ``estimate_error`` drawn for the
-    trial (its own random stream: the jitter does not change with it). ``door_shape`` replaces
-    :class:`DoorConfig` fields (``width``, ``handle_height``: the DRC door's 0.914 m and 0.91 m by
-    default); ``wind`` (N·m) is the amplitude of the wind on the hinge, as the Monte-Carlo's."""
+    trial (its own random stream: the jitter does not change with it). ``door_shape`` is the
+    leaf's width and the lever's height (the DRC door's 0.914 m and 0.91 m by default); ``wind`` (N·m) is the amplitude of the wind on the hinge, as the Monte-Carlo's."""
     rng = np.random.default_rng(trial)
     error = estimate_error.drawn(np.random.default_rng([trial, 1]))
     robot = kinematics.profile.name
     parameters = {**NODE_DEFAULTS, **(planner_parameters or {})}
-    door = dataclasses.replace(DoorConfig(opening=opening, hinge_side=hinge, wind=WindConfig(amplitude=wind)),
-                               **(door_shape or {}))
+    door = door_shape.applied(DoorConfig(opening=opening, hinge_side=hinge, wind=WindConfig(amplitude=wind)))
     peaks: dict[str, float] = {}
     if walk_from is None:
         jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
@@ -399,8 +412,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if not all(0.0 <= bound <= 10.0 for bound in args.estimate_error):
         parser.error(f"--estimate-error must be within [0, 10] cm and [0, 10] degrees, got {args.estimate_error}")
     estimate_error = EstimateError(args.estimate_error[0] / 100.0, np.radians(args.estimate_error[1]))
-    door_shape = {name: value for name, value in (("width", args.door_width), ("handle_height", args.handle_height))
-                  if value is not None}
+    door_shape = DoorShape(args.door_width, args.handle_height)
     check_robot(parser, args.robot)
     kinematics = RobotKinematics(load_profile(args.robot))
     runs = []
