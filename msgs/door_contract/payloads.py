@@ -18,6 +18,7 @@ from typing import Any, TypeVar, get_type_hints
 from door_contract.errors import ContractError, NonFiniteError
 from door_contract.json_text import parse_bounded
 from door_contract.vocabulary import (
+    AttemptOutcome,
     Autonomy,
     Backend,
     DetectionMode,
@@ -63,14 +64,52 @@ class ExecutionOutcome:
 
 
 @dataclasses.dataclass(frozen=True)
+class FootstepFigures:
+    """What a footstep search reports: the A* node expansions it took and, with a plan, its
+    steps and the walked length (m)."""
+
+    expansions: int
+    steps: int = 0
+    length_m: float = 0.0
+
+
+@dataclasses.dataclass(frozen=True)
+class MotionFigures:
+    """What a motion plan reports, converged or not: its cost and largest constraint violation
+    (None when not finite: a diverged plan's outcome must still go out, issue #12), the solver's
+    iterations, the initial guesses tried, the trajectory's duration (s) and the backend; with a
+    trajectory, the arm chain's joint names, its initial guess and the optimised trajectory
+    (rad, one row per waypoint) for the report's before/after plot ([Zucker 2013] Fig. 4)."""
+
+    cost: float | None
+    max_violation: float | None
+    iterations: int
+    attempts: int  # initial guesses tried
+    duration_s: float
+    backend: Backend
+    joint_names: tuple[str, ...] = ()
+    initial_guess: tuple[tuple[float, ...], ...] = ()
+    optimised: tuple[tuple[float, ...], ...] = ()
+
+
+@dataclasses.dataclass(frozen=True)
 class PlanningOutcome:
-    """Published by a planner for every request id: success (with figures) or the reason."""
+    """Published by a planner for every request id: success (with figures) or the reason.
+
+    ``stamp_ns`` is the ``header.stamp`` (ns) of the proposal (Path or JointTrajectory) this
+    outcome goes with, -1 when nothing was proposed: the FSM pairs the two by it. A motion plan
+    says the hinge angle it leaves the door at (``door_angle``, rad; None: no plan, or not
+    finite). Each planner's figures are in its own field, the other one is None.
+    """
 
     request_id: int
     status: OutcomeStatus
     reason: str = ""
     planning_time_s: float = 0.0
-    details: dict = dataclasses.field(default_factory=dict)
+    stamp_ns: int = -1
+    door_angle: float | None = None
+    footsteps: FootstepFigures | None = None
+    motion: MotionFigures | None = None
 
 
 @dataclasses.dataclass(frozen=True)
@@ -134,6 +173,31 @@ class PlanningCancel:
     reason: str = ""
 
 
+ProposalSummary = dict[str, str | float | int]
+"""What the operator is shown of a proposal, figure by figure (``steps``, ``cost``,
+``planning_ms``, a door estimate's ``width_m``, ...): the approval request's text and a state
+attempt's record of it."""
+
+
+@dataclasses.dataclass(frozen=True)
+class StateAttempt:
+    """One attempt at one state of the task, as the TaskReport lists it (times in s).
+
+    ``state`` is the state's label (``OPEN_DOOR/TURN_HANDLE`` for a sub-state: its phase
+    first), ``attempt`` 1 for the first try. Planning and waiting for the operator are
+    measured on the wall clock, moving on the robot clock (``TaskReport.clocks``).
+    """
+
+    state: str
+    attempt: int
+    outcome: AttemptOutcome
+    planning_s: float = 0.0
+    waiting_s: float = 0.0
+    moving_s: float = 0.0
+    reason: str = ""
+    summary: ProposalSummary = dataclasses.field(default_factory=dict)
+
+
 @dataclasses.dataclass(frozen=True)
 class TaskReport:
     """``/door_task/report`` (latched): how the task ended and every state attempt."""
@@ -142,28 +206,22 @@ class TaskReport:
     failure_reason: str
     opening: DoorOpening
     autonomy: Autonomy
-    attempts: tuple[dict, ...]  # door_fsm.records.StateRecord.as_dict(): state, attempt, outcome, times, summary
+    attempts: tuple[StateAttempt, ...]
     clocks: str = ""  # which clock each time is measured on (docs/CLOCKS.md)
 
 
 def encode(payload: Any) -> str:
-    """JSON text of a payload dataclass (Enums by value)."""
+    """JSON text of a payload dataclass (nested dataclasses as objects, Enums by value)."""
     return json.dumps(dataclasses.asdict(payload), default=_enum_value, allow_nan=False)
 
 
-def without_non_finite(value: Any) -> Any:
-    """``value`` with every NaN or infinity (in nested dicts, lists, tuples) replaced by None.
+def finite_or_none(value: float) -> float | None:
+    """``value``, or None when it is NaN or infinite.
 
     A failure's figures (the cost of a diverged plan) may be NaN; the outcome must still go
     out (``encode`` refuses NaN, which once killed the optimiser: issue #12).
     """
-    if isinstance(value, float):
-        return value if math.isfinite(value) else None
-    if isinstance(value, dict):
-        return {k: without_non_finite(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [without_non_finite(v) for v in value]
-    return value
+    return value if math.isfinite(value) else None
 
 
 def _enum_value(value: Any) -> Any:
@@ -175,20 +233,25 @@ def _enum_value(value: Any) -> Any:
 def decode(payload_type: type[Payload], text: str) -> Payload:
     """A ``payload_type`` instance from JSON, or :class:`ContractError` saying what is wrong
     (size and nesting are bounded before parsing: :func:`~door_contract.json_text.parse_bounded`)."""
-    document = parse_bounded(payload_type.__name__, text)
+    return decode_document(payload_type, parse_bounded(payload_type.__name__, text))
+
+
+def decode_document(payload_type: type[Payload], document: Any, owner: str = "") -> Payload:
+    """A ``payload_type`` instance from parsed JSON (a dict, e.g. read back from a report file),
+    checked as :func:`decode` checks text; ``owner`` names it in errors (default: the type)."""
+    owner = owner or payload_type.__name__
     if not isinstance(document, dict):
-        raise ContractError(f"{payload_type.__name__}: expected a JSON object")
+        raise ContractError(f"{owner}: expected a JSON object")
     hints = get_type_hints(payload_type)
-    fields = {f.name: f for f in dataclasses.fields(payload_type)}  # type: ignore[arg-type]  # Payload: any dataclass
-    unknown = sorted(set(document) - set(fields))
+    names = [f.name for f in dataclasses.fields(payload_type)]  # type: ignore[arg-type]  # Payload: any dataclass
+    unknown = sorted(set(document) - set(names))
     if unknown:
-        raise ContractError(f"{payload_type.__name__}: unknown field(s) {', '.join(unknown)}")
-    values = {name: _field_value(payload_type.__name__, name, hints[name], document[name])
-              for name in fields if name in document}
+        raise ContractError(f"{owner}: unknown field(s) {', '.join(unknown)}")
+    values = {name: _field_value(owner, name, hints[name], document[name]) for name in names if name in document}
     try:
         return payload_type(**values)
     except TypeError as error:
-        raise ContractError(f"{payload_type.__name__}: {error}") from None
+        raise ContractError(f"{owner}: {error}") from None
 
 
 def _optional_type(hint: Any) -> Any:
@@ -199,48 +262,73 @@ def _optional_type(hint: Any) -> Any:
     return None
 
 
-def _finite_tuple(owner: str, name: str, values: list[Any]) -> tuple[Any, ...]:
-    items: list[Any] = []
-    for value in values:
-        if isinstance(value, list):
-            items.append(_finite_tuple(owner, name, value))
-        elif isinstance(value, dict):
-            items.append(value)
-        elif isinstance(value, (int, float)) and not isinstance(value, bool):
-            if not math.isfinite(value):
-                raise NonFiniteError(f"{owner}.{name} is not finite")
-            items.append(float(value))
-        else:
-            raise ContractError(f"{owner}.{name}: expected numbers, got {value!r}")
-    return tuple(items)
+def _item_type(hint: Any) -> Any:
+    """The type of a tuple hint's items: ``X`` of ``tuple[X, ...]`` or ``tuple[X, X, X]``.
+
+    Lengths are the consumer's to check (:func:`~door_contract.door_estimates.door_estimate_problem`
+    names a door's malformed corners); a payload tuple holds items of one type.
+    """
+    kinds = {argument for argument in typing.get_args(hint) if argument is not Ellipsis}
+    if len(kinds) != 1:
+        raise TypeError(f"{hint}: a payload tuple names the one type of its items")
+    return kinds.pop()
+
+
+def _tuple_value(owner: str, name: str, hint: Any, value: Any) -> tuple[Any, ...]:
+    """A tuple from a JSON list, every item decoded as the hint's item type."""
+    if not isinstance(value, list):
+        raise ContractError(f"{owner}.{name}: expected a list, got {value!r}")
+    item_type = _item_type(hint)
+    return tuple(_field_value(owner, name, item_type, item) for item in value)
+
+
+def _enum_member(owner: str, name: str, hint: type[Enum], value: Any) -> Enum:
+    """The member of ``hint`` spelled ``value``, or ContractError listing the allowed ones."""
+    if issubclass(hint, str) and not isinstance(value, str):
+        raise ContractError(f"{owner}.{name}: expected a string, got {value!r}")
+    try:
+        return hint(value)
+    except ValueError:
+        allowed = ", ".join(str(m.value) for m in hint)
+        raise ContractError(f"{owner}.{name}: unknown {name} {value!r}; use one of {allowed}") from None
+
+
+def _number(owner: str, name: str, value: Any) -> float:
+    """A finite JSON number as a float (NonFiniteError for NaN and infinities)."""
+    if not isinstance(value, (int, float)) or isinstance(value, bool):
+        raise ContractError(f"{owner}.{name}: expected a number, got {value!r}")
+    if not math.isfinite(value):
+        raise NonFiniteError(f"{owner}.{name} is not finite")
+    return float(value)
+
+
+def _scalar_problem(hint: Any, value: Any) -> str:
+    """What is wrong with ``value`` for an int, bool or str field ("" if nothing)."""
+    if hint is int and (not isinstance(value, int) or isinstance(value, bool)):
+        return "expected an integer"
+    if hint is bool and not isinstance(value, bool):
+        return "expected true or false"
+    if hint is str and not isinstance(value, str):
+        return "expected a string"
+    return ""
 
 
 def _field_value(owner: str, name: str, hint: Any, value: Any) -> Any:
+    """``value`` (parsed JSON) checked and converted to the field's type ``hint``."""
     optional = _optional_type(hint)
     if optional is not None:
         return None if value is None else _field_value(owner, name, optional, value)
     if isinstance(hint, type) and issubclass(hint, Enum):
-        if issubclass(hint, str) and not isinstance(value, str):
-            raise ContractError(f"{owner}.{name}: expected a string, got {value!r}")
-        try:
-            return hint(value)
-        except ValueError:
-            allowed = ", ".join(str(m.value) for m in hint)
-            raise ContractError(f"{owner}.{name}: unknown {name} {value!r}; use one of {allowed}") from None
+        return _enum_member(owner, name, hint, value)
     if hint is float:
-        if not isinstance(value, (int, float)) or isinstance(value, bool):
-            raise ContractError(f"{owner}.{name}: expected a number, got {value!r}")
-        if not math.isfinite(value):
-            raise NonFiniteError(f"{owner}.{name} is not finite")
-        return float(value)
-    if hint is int and (not isinstance(value, int) or isinstance(value, bool)):
-        raise ContractError(f"{owner}.{name}: expected an integer, got {value!r}")
-    if hint is bool and not isinstance(value, bool):
-        raise ContractError(f"{owner}.{name}: expected true or false, got {value!r}")
-    if hint is str and not isinstance(value, str):
-        raise ContractError(f"{owner}.{name}: expected a string, got {value!r}")
-    if getattr(hint, "__origin__", None) is tuple or hint is tuple:
-        if not isinstance(value, list):
-            raise ContractError(f"{owner}.{name}: expected a list, got {value!r}")
-        return _finite_tuple(owner, name, value)
+        return _number(owner, name, value)
+    problem = _scalar_problem(hint, value)
+    if problem:
+        raise ContractError(f"{owner}.{name}: {problem}, got {value!r}")
+    if typing.get_origin(hint) is tuple:
+        return _tuple_value(owner, name, hint, value)
+    if isinstance(hint, type) and dataclasses.is_dataclass(hint):
+        return decode_document(hint, value, f"{owner}.{name}")
+    if typing.get_origin(hint) is dict and not isinstance(value, dict):
+        raise ContractError(f"{owner}.{name}: expected a JSON object, got {value!r}")
     return value

@@ -15,8 +15,8 @@ from __future__ import annotations
 
 from enum import StrEnum
 
-__all__ = ["Autonomy", "Backend", "DetectionMode", "DoorOpening", "Foot", "HingeSide", "Motion", "PlannerKind",
-           "Side", "TaskEnd", "WalkGoal", "grasp_hand"]
+__all__ = ["AttemptOutcome", "Autonomy", "Backend", "DetectionMode", "DoorOpening", "Foot", "HingeSide", "Motion",
+           "PlannerKind", "Side", "TaskEnd", "WalkGoal", "grasp_hand"]
 
 
 class DoorOpening(StrEnum):
@@ -138,3 +138,17 @@ class PlannerKind(StrEnum):
 
     FOOTSTEPS = "footsteps"
     MOTION = "motion"
+
+
+class AttemptOutcome(StrEnum):
+    """How one state attempt of the task ended (``StateAttempt.outcome`` in the TaskReport): the
+    spelling of the FSM's ``door_fsm.states.StateOutcome``, or unfinished (the task ended while
+    the state was still at work)."""
+
+    SUCCEEDED = "succeeded"
+    FAILED = "failed"
+    SLIPPED = "slipped"
+    TIMEOUT = "timeout"
+    ABORTED = "aborted"
+    FELL = "fell"
+    UNFINISHED = "unfinished"

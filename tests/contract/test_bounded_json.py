@@ -13,14 +13,15 @@ from door_contract.network import DISCOVERY_RANGE, keep_discovery_local
 from door_contract.payloads import (
     DoorEstimate,
     FootstepRequest,
+    MotionFigures,
     MotionRequest,
     OutcomeStatus,
     PlanningOutcome,
     decode,
     encode,
-    without_non_finite,
+    finite_or_none,
 )
-from door_contract.vocabulary import HingeSide
+from door_contract.vocabulary import Backend, HingeSide
 
 ESTIMATE = DoorEstimate(1.5, "odom", (1.0, 0.3, 0.9), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
                         ((1.0, -0.45, 0.0), (1.0, 0.45, 0.0), (1.0, 0.45, 2.0), (1.0, -0.45, 2.0)),
@@ -63,10 +64,11 @@ def test_requests_carry_an_attempt_number():
 
 
 def test_non_finite_figures_become_null_and_encode():
-    details = without_non_finite({"cost": math.nan, "rows": [[1.0, math.inf]], "steps": 3})
-    assert details == {"cost": None, "rows": [[1.0, None]], "steps": 3}
-    text = encode(PlanningOutcome(1, OutcomeStatus.FAILURE, "diverged", 0.1, details))
-    assert decode(PlanningOutcome, text).details["cost"] is None
+    assert (finite_or_none(math.nan), finite_or_none(-math.inf), finite_or_none(2.5)) == (None, None, 2.5)
+    figures = MotionFigures(finite_or_none(math.nan), finite_or_none(math.inf), 40, 1, 0.0, Backend.SQP)
+    text = encode(PlanningOutcome(1, OutcomeStatus.FAILURE, "diverged", 0.1, door_angle=None, motion=figures))
+    decoded = decode(PlanningOutcome, text)
+    assert decoded.motion is not None and decoded.motion.cost is None and decoded.motion.max_violation is None
 
 
 @pytest.mark.parametrize("change, match", [

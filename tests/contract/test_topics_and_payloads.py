@@ -1,11 +1,25 @@
 """The topic table is complete, unique and resolvable; JSON payloads reject bad input."""
 
+import json
+
 import pytest
 
 from door_contract.errors import ContractError, NonFiniteError
-from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, PlanningOutcome, decode, encode
+from door_contract.payloads import (
+    ExecutionKind,
+    ExecutionOutcome,
+    FootstepFigures,
+    MotionFigures,
+    OutcomeStatus,
+    PlanningOutcome,
+    StateAttempt,
+    TaskReport,
+    decode,
+    encode,
+)
 from door_contract.qos import Durability
 from door_contract.topics import Services, Topics
+from door_contract.vocabulary import AttemptOutcome, Autonomy, Backend, DoorOpening, TaskEnd
 
 DESIGN_TOPICS = {
     "/clock", "/joint_states", "/odom", "/head_camera/color/image_raw",
@@ -40,8 +54,37 @@ def test_latched_topics_are_transient_local():
 def test_payload_round_trip():
     outcome = ExecutionOutcome(ExecutionKind.TRAJECTORY, 42, OutcomeStatus.REJECTED, "unknown joint x")
     assert decode(ExecutionOutcome, encode(outcome)) == outcome
-    planning = PlanningOutcome(3, OutcomeStatus.SUCCESS, planning_time_s=0.01, details={"steps": 12})
+    planning = PlanningOutcome(3, OutcomeStatus.SUCCESS, planning_time_s=0.01, stamp_ns=17,
+                               footsteps=FootstepFigures(240, steps=12, length_m=3.1))
     assert decode(PlanningOutcome, encode(planning)) == planning
+    motion = PlanningOutcome(4, OutcomeStatus.SUCCESS, "", 0.2, 18, door_angle=0.35, motion=MotionFigures(
+        1.5, 2e-6, 30, 1, 4.0, Backend.SQP, ("arm_right_1_joint",), ((0.0,), (0.5,)), ((0.0,), (0.4,))))
+    assert decode(PlanningOutcome, encode(motion)) == motion
+
+
+def test_a_task_report_lists_typed_state_attempts_and_its_json_stays_an_object_per_attempt():
+    attempts = (StateAttempt("DETECT_DOOR", 1, AttemptOutcome.SUCCEEDED, 0.4, 2.0, 0.0, "",
+                             {"width_m": 0.914, "hinge": "left"}),
+                StateAttempt("OPEN_DOOR/TURN_HANDLE", 2, AttemptOutcome.UNFINISHED, 0.1))
+    report = TaskReport(TaskEnd.FAILED, "aborted", DoorOpening.PUSH, Autonomy.FULL, attempts, "wall")
+    text = encode(report)
+    assert decode(TaskReport, text) == report
+    first = json.loads(text)["attempts"][0]
+    assert first == {"state": "DETECT_DOOR", "attempt": 1, "outcome": "succeeded", "planning_s": 0.4,
+                     "waiting_s": 2.0, "moving_s": 0.0, "reason": "", "summary": {"width_m": 0.914, "hinge": "left"}}
+
+
+@pytest.mark.parametrize("document, match", [
+    ({"motion": {"cost": 1.0}}, "PlanningOutcome.motion: .*required"),
+    ({"footsteps": {"expansions": 3, "steps": "many"}}, "PlanningOutcome.footsteps.steps: expected an integer"),
+    ({"footsteps": [3]}, "PlanningOutcome.footsteps: expected a JSON object"),
+    ({"motion": {"cost": None, "max_violation": None, "iterations": 1, "attempts": 1, "duration_s": 1.0,
+                 "backend": "sqp", "joint_names": [1]}}, "joint_names: expected a string"),
+    ({"details": {"stamp_ns": 5}}, "unknown field"),
+])
+def test_malformed_figures_are_refused_naming_the_field(document, match):
+    with pytest.raises(ContractError, match=match):
+        decode(PlanningOutcome, json.dumps({"request_id": 1, "status": "success", **document}))
 
 
 @pytest.mark.parametrize("text, error, match", [

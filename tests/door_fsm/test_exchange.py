@@ -6,7 +6,7 @@ from door_fsm.exchange import PlanExchange, Proposal
 
 
 def outcome(request_id, stamp, status=OutcomeStatus.SUCCESS):
-    return PlanningOutcome(request_id, status, "", 0.1, {"stamp_ns": stamp})
+    return PlanningOutcome(request_id, status, "", 0.1, stamp_ns=stamp)
 
 
 def exchange():

@@ -13,7 +13,7 @@ from door_bringup.graph_spec import GRAPH
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import DoorEstimate, TaskReport, decode, encode
 from door_contract.topics import Topics
-from door_contract.vocabulary import HingeSide
+from door_contract.vocabulary import AttemptOutcome, HingeSide
 
 pytestmark = pytest.mark.ros
 FSM = next(launch for launch in GRAPH if launch.node_name == "fsm_supervisor")
@@ -92,7 +92,7 @@ def test_approval_request_then_operator_silence_times_out(supervisor):
     assert supervisor.wait(lambda: supervisor.reports, 10.0)
     report = supervisor.reports[-1]
     assert report.final_state == "FAILED" and "operator did not answer" in report.failure_reason
-    assert report.attempts[0]["state"] == "DETECT_DOOR" and report.attempts[0]["outcome"] == "timeout"
+    assert report.attempts[0].state == "DETECT_DOOR" and report.attempts[0].outcome is AttemptOutcome.TIMEOUT
 
 
 def test_reject_pause_resume_abort_and_unknown_command(supervisor):

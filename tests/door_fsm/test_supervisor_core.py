@@ -11,6 +11,7 @@ from door_contract.payloads import (
     DoorEstimate,
     ExecutionKind,
     ExecutionOutcome,
+    FootstepFigures,
     OutcomeStatus,
     PlanningOutcome,
     encode,
@@ -73,7 +74,8 @@ def test_a_walk_is_requested_with_the_approved_door_and_given_its_steps_time() -
     path = Path(poses=[PoseStamped() for _ in range(10)])
     path.header.stamp = time_msg_of_ns(5_000)
     assert supervisor.proposal("footsteps", path, t(2.0)) == []  # waits for its outcome
-    outcome = PlanningOutcome(request.request_id, OutcomeStatus.SUCCESS, details={"stamp_ns": 5_000, "steps": 10})
+    outcome = PlanningOutcome(request.request_id, OutcomeStatus.SUCCESS, stamp_ns=5_000,
+                              footsteps=FootstepFigures(100, steps=10, length_m=2.5))
     execute = next(a for a in supervisor.planning_outcome("footsteps", encode(outcome), t(3.0))
                    if isinstance(a, act.Execute))
     supervisor.settle()
@@ -91,7 +93,7 @@ def test_the_robots_answer_to_what_it_was_sent_finishes_the_state() -> None:
     path = Path(poses=[PoseStamped()])
     path.header.stamp = time_msg_of_ns(7)
     supervisor.proposal("footsteps", path, t(2.0))
-    outcome = PlanningOutcome(request.request_id, OutcomeStatus.SUCCESS, details={"stamp_ns": 7})
+    outcome = PlanningOutcome(request.request_id, OutcomeStatus.SUCCESS, stamp_ns=7)
     execute = next(a for a in supervisor.planning_outcome("footsteps", encode(outcome), t(3.0))
                    if isinstance(a, act.Execute))
     supervisor.take(execute.request_id, 42)

@@ -1,6 +1,6 @@
 """From a motion request to a library job without ROS: refusals name what is wrong or missing
 (and are the only TrajoptError answered as bad input), the arm follows from hinge and opening,
-and a plan's outcome details carry what the FSM and the report read."""
+and a plan's outcome carries what the FSM and the report read."""
 
 from __future__ import annotations
 
@@ -11,11 +11,20 @@ import pytest
 from door_scenes import talos_kinematics
 
 from door_contract.errors import ContractError
-from door_contract.payloads import DoorEstimate, MotionRequest, decode, encode
+from door_contract.payloads import (
+    DoorEstimate,
+    MotionFigures,
+    MotionRequest,
+    OutcomeStatus,
+    PlanningOutcome,
+    decode,
+    encode,
+)
 from door_contract.vocabulary import Backend, DoorOpening, HingeSide, Motion, Side
-from door_trajopt.library import MotionLibrary
+from door_trajopt.library import MotionLibrary, MotionPlan
 from door_trajopt.problem import TrajoptError
-from door_trajopt.requests import PlanningRefused, Snapshot, motion_job, outcome_details
+from door_trajopt.requests import PlanningRefused, Snapshot, motion_job, planning_outcome
+from door_trajopt.result import OptimizationResult, Outcome
 
 # base at (-0.5, -0.12) facing +x, door plane x = 0, left hinge: the footstep planner's stand pose
 ESTIMATE = DoorEstimate(1.0, "odom", (-0.06, -0.321, 0.91), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
@@ -99,17 +108,32 @@ def test_a_request_naming_an_unknown_hand_is_refused_by_the_contract_and_a_known
         decode(MotionRequest, json.dumps(json.loads(text) | {"hand": "middle"}))
 
 
-def test_outcome_details_without_a_plan_carry_the_stamp_only():
-    assert outcome_details(None, "sqp", 42) == {"stamp_ns": 42}
+def test_an_outcome_without_a_plan_carries_the_stamp_only():
+    outcome = planning_outcome(3, OutcomeStatus.REJECTED, "no door estimate", None, Backend.SQP, 42)
+    assert outcome == PlanningOutcome(3, OutcomeStatus.REJECTED, "no door estimate", stamp_ns=42)
+
+
+def test_a_diverged_plans_figures_go_out_as_null_without_its_trajectory():
+    """Issue #12: a NaN cost must not stop the outcome (encode refuses NaN)."""
+    trajectory = np.full((3, 2), np.nan)
+    result = OptimizationResult(trajectory, Outcome.INFEASIBLE, np.nan, np.inf, "door", 40, 0.1)
+    plan = MotionPlan(Motion.TURN_HANDLE, result, None, (np.nan, 0.0), 2, 0.3, np.zeros((3, 2)))
+    outcome = planning_outcome(5, OutcomeStatus.FAILURE, "diverged", plan, Backend.CHOMP)
+    assert outcome.door_angle is None and outcome.stamp_ns == -1 and outcome.planning_time_s == 0.3
+    assert outcome.motion == MotionFigures(None, None, 40, 2, 0.0, Backend.CHOMP)
+    assert decode(PlanningOutcome, encode(outcome)) == outcome
 
 
 @pytest.mark.slow
-def test_outcome_details_of_a_plan_carry_what_the_fsm_and_the_report_read(kinematics):
+def test_the_outcome_of_a_plan_carries_what_the_fsm_and_the_report_read(kinematics):
     job = _job(kinematics, MotionRequest(10, "approach_handle", DoorOpening.PUSH), _snapshot(kinematics))
     plan = MotionLibrary().plan(job.motion, job.setup, job.start, job.backend)
-    details = outcome_details(plan, "sqp", 7)
-    assert details["stamp_ns"] == 7 and details["backend"] == "sqp" and details["attempts"] == plan.attempts
-    assert {"cost", "max_violation", "iterations", "door_angle", "duration_s"} <= set(details)
+    outcome = planning_outcome(10, OutcomeStatus.SUCCESS, "", plan, Backend.SQP, 7)
+    figures = outcome.motion
+    assert outcome.stamp_ns == 7 and outcome.door_angle is not None and figures is not None
+    assert figures.backend is Backend.SQP and figures.attempts == plan.attempts and figures.duration_s > 0.0
+    assert figures.cost is not None and figures.max_violation is not None and figures.iterations > 0
     if plan.path is not None:
-        k = len(details["joint_names"])
-        assert np.asarray(details["optimised"]).shape[1] == k == np.asarray(details["initial_guess"]).shape[1]
+        k = len(figures.joint_names)
+        assert np.asarray(figures.optimised).shape[1] == k == np.asarray(figures.initial_guess).shape[1]
+    assert decode(PlanningOutcome, encode(outcome)) == outcome

@@ -18,7 +18,7 @@ from door_contract.node_support import create_contract_publisher, create_contrac
 from door_contract.payloads import DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Topics
-from door_contract.vocabulary import HingeSide
+from door_contract.vocabulary import Backend, HingeSide
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_trajopt.library import MotionLibrary
@@ -101,10 +101,12 @@ def test_approach_is_planned_within_limits(robot):
     outcome = robot.request(MotionRequest(1, "approach_handle", "push", "chomp", 0.0, ESTIMATE.stamp))
     assert outcome.status is OutcomeStatus.SUCCESS, outcome.reason
     # within the library's constraint tolerance (10 µm): the node now plans with its 10 waypoints
-    assert outcome.details["max_violation"] <= MotionLibrary().constraint_tolerance
-    assert outcome.details["backend"] == "chomp"
+    figures = outcome.motion
+    assert figures is not None and figures.max_violation is not None
+    assert figures.max_violation <= MotionLibrary().constraint_tolerance
+    assert figures.backend is Backend.CHOMP
     assert spin_until(robot.executor, lambda: any(
-        stamp_ns(t.header.stamp) == outcome.details["stamp_ns"]
+        stamp_ns(t.header.stamp) == outcome.stamp_ns
         for t in robot.trajectories), 10.0)
     path = msg_to_joint_path(robot.trajectories[-1])
     assert path.joint_names[:2] == ("torso_1_joint", "torso_2_joint") and "arm_right_4_joint" in path.joint_names

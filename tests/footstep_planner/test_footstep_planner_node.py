@@ -89,13 +89,13 @@ def test_stand_pose_plan_alternates_feet_and_ends_in_front_of_the_door(client):
     outcome = client.request(1, "stand")
     assert outcome.status is OutcomeStatus.SUCCESS, outcome.reason
     assert spin_until(client.executor, lambda: any(
-        stamp_ns(p.header.stamp) == outcome.details["stamp_ns"] for p in client.plans), 10.0)
+        stamp_ns(p.header.stamp) == outcome.stamp_ns for p in client.plans), 10.0)
     steps = path_to_footsteps(client.plans[-1])
     assert [s.foot for s in steps] == [Foot.LEFT if i % 2 == 0 else Foot.RIGHT for i in range(len(steps))]
     last_two = steps[-2:]
     centre_x = sum(s.x for s in last_two) / 2
     assert -0.7 < centre_x < -0.3  # ~0.5 m in front of the door plane
-    assert outcome.details["steps"] >= math.ceil(3.4 / 0.25)
+    assert outcome.footsteps is not None and outcome.footsteps.steps >= math.ceil(3.4 / 0.25)
 
 
 def test_passage_through_the_door(client):

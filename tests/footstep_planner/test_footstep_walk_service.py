@@ -11,7 +11,7 @@ import numpy as np
 from footstep_scenes import profile_options
 from test_footstep_proposal import _door
 
-from door_contract.payloads import FootstepRequest, OutcomeStatus
+from door_contract.payloads import FootstepFigures, FootstepRequest, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.planner_service import Finished
 from door_contract.vocabulary import DoorOpening, Foot, WalkGoal
 from footstep_planner.errors import RequestRefused
@@ -41,8 +41,9 @@ def test_a_plan_is_proposed_and_answered_with_its_figures_and_the_next_starts_wh
     assert [f.foot for f in answer.footsteps] == [Foot.LEFT if i % 2 == 0 else Foot.RIGHT
                                                   for i in range(len(answer.footsteps))]
     assert len(answer.shapes) == len(answer.footsteps)
-    assert answer.stamp_ns == 5_000 and answer.details["stamp_ns"] == 5_000
-    assert answer.details["steps"] > 0 and 1.0 < answer.details["length_m"] < 2.5
+    assert answer.stamp_ns == 5_000 and answer.outcome(7).stamp_ns == 5_000
+    figures = answer.outcome(7).footsteps
+    assert figures is not None and figures.steps > 0 and 1.0 < figures.length_m < 2.5
     assert service.planned_stance is not None
     stance = service.planned_stance
     base = np.eye(4)
@@ -61,7 +62,7 @@ def test_a_failed_search_is_a_failure_with_the_planners_outcome_and_proposes_not
     answer = _planned(service, _request(), behind_the_wall)
     assert answer.status is OutcomeStatus.FAILURE and answer.footsteps == () and answer.stamp_ns == -1
     assert answer.reason.startswith("invalid_start: start stance collides") and not answer.bug
-    assert answer.details == {"expansions": 0}
+    assert answer.figures == FootstepFigures(0) and answer.outcome(7).stamp_ns == -1
     assert service.planned_stance is None
 
 
@@ -89,6 +90,8 @@ def test_a_push_passage_says_when_the_door_angle_it_plans_for_changed() -> None:
     assert wider.problem.door.angle == 1.9
 
 
-def test_an_outcome_carries_non_finite_figures_as_null() -> None:
-    outcome = Answer(OutcomeStatus.FAILURE, "diverged", 0.5, {"cost": float("nan")}).outcome(3)
-    assert (outcome.request_id, outcome.status, outcome.details) == (3, OutcomeStatus.FAILURE, {"cost": None})
+def test_an_outcome_carries_the_searchs_figures_and_decodes_as_it_went_out() -> None:
+    outcome = Answer(OutcomeStatus.FAILURE, "no_path: budget spent", 0.5, FootstepFigures(1_200)).outcome(3)
+    assert (outcome.request_id, outcome.status, outcome.footsteps) == (3, OutcomeStatus.FAILURE, FootstepFigures(1_200))
+    assert outcome.motion is None and outcome.door_angle is None
+    assert decode(PlanningOutcome, encode(outcome)) == outcome

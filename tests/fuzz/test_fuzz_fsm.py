@@ -58,7 +58,7 @@ class FakePlanners:
         proposal_pub, outcome_pub = self.pubs[kind]
         proposal_pub.publish(message)
         outcome_pub.publish(String(data=encode(PlanningOutcome(
-            request_id, OutcomeStatus.SUCCESS, "", 0.01, {"stamp_ns": stamp_ns(message.header.stamp)}))))
+            request_id, OutcomeStatus.SUCCESS, "", 0.01, stamp_ns=stamp_ns(message.header.stamp)))))
 
     def destroy(self):
         self.observer.executor.remove_node(self.node)

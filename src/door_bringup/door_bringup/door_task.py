@@ -23,7 +23,7 @@ import argparse
 import json
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 
@@ -41,7 +41,7 @@ from door_bringup.processes import ProcessSupervisor
 from door_bringup.progress_monitor import ProgressMonitor
 from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.run_plots import plot_run
-from door_bringup.table_one import format_table, phase_rows
+from door_bringup.table_one import format_table, phase_rows, state_attempts
 from door_bringup.workspace import Workspace, repository_root
 from door_contract.converters.diagnostics import status_values
 from door_contract.network import keep_discovery_local
@@ -215,7 +215,8 @@ def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, 
         return {"final_state": TaskEnd.FAILED, "failure_reason": f"no TaskReport within {timeout_s:g} s", "attempts": []}
     report = operator.report
     return {"final_state": report.final_state, "failure_reason": report.failure_reason,
-            "opening": report.opening, "autonomy": report.autonomy, "attempts": list(report.attempts),
+            "opening": report.opening, "autonomy": report.autonomy,
+            "attempts": [asdict(attempt) for attempt in report.attempts],  # report.json: an object per attempt
             "clocks": report.clocks}
 
 
@@ -228,9 +229,8 @@ def write_report(run_dir: Path, options: TaskOptions, report: dict) -> str:
              f"Wall time: {report.get('wall_time_s', 0):.1f} s; autonomy {options.autonomy}; backend {options.backend}",
              "", table, "", f"Times: {report.get('clocks') or 'see docs/CLOCKS.md'}.", "", "## State attempts", "", "| state | attempt | outcome | planning | moving | reason |",
              "|---|---|---|---|---|---|"]
-    for a in report["attempts"]:
-        lines.append(f"| {a['state']} | {a['attempt']} | {a['outcome']} | {a['planning_s']:.3f} s | "
-                     f"{a['moving_s']:.1f} s | {a['reason']} |")
+    for a in state_attempts(report):
+        lines.append(f"| {a.state} | {a.attempt} | {a.outcome} | {a.planning_s:.3f} s | {a.moving_s:.1f} s | {a.reason} |")
     text = "\n".join(lines) + "\n"
     (run_dir / "report.md").write_text(text)
     (run_dir / "report.json").write_text(json.dumps({"options": options.__dict__, **report}, indent=2, default=str))

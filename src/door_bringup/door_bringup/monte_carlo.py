@@ -35,9 +35,9 @@ from door_bringup.domains import lease_domain
 from door_bringup.door_task import TaskOptions, run_task
 from door_bringup.interrupts import interrupt_on_sigterm
 from door_bringup.robot_option import add_robot_argument, check_robot
-from door_bringup.table_one import format_table, phase_of, phase_rows
+from door_bringup.table_one import format_table, phase_of, phase_rows, state_attempts
 from door_bringup.workspace import Workspace, repository_root
-from door_contract.vocabulary import TaskEnd
+from door_contract.vocabulary import AttemptOutcome, TaskEnd
 
 
 def sample_trial(rng: np.random.Generator, base: TaskOptions, trial: int) -> TaskOptions:
@@ -221,7 +221,8 @@ def falls_line(reports: list[dict]) -> str:
     """Runs that ended with the robot fallen, per phase and, where a phase has sub-states, per
     sub-state: the state attempt whose outcome is ``fell`` (the FSM records it so when the
     execution reports the fall)."""
-    states = Counter(attempt["state"] for r in reports for attempt in r["attempts"] if attempt["outcome"] == "fell")
+    states = Counter(attempt.state for r in reports for attempt in state_attempts(r)
+                     if attempt.outcome is AttemptOutcome.FELL)
     phases = Counter[str]()
     for state, count in states.items():
         phases[phase_of(state)] += count
@@ -241,11 +242,11 @@ def _sub_states(phase: str, states: Counter[str]) -> str:
 def overhead_line(reports: list[dict]) -> str:
     """Perception + planning per run: wall time the robot waited for the detector and the
     planners (the FSM's planning phases, without operator or moving time)."""
-    per_run = sorted(sum(a["planning_s"] for a in r["attempts"]) for r in reports if r["attempts"])
-    if not per_run:
+    runs = [attempts for attempts in map(state_attempts, reports) if attempts]
+    if not runs:
         return "Perception + planning overhead: no run reached a state"
-    detection = [sum(a["planning_s"] for a in r["attempts"] if a["state"] == "DETECT_DOOR")
-                 for r in reports if r["attempts"]]
+    per_run = sorted(sum(a.planning_s for a in attempts) for attempts in runs)
+    detection = [sum(a.planning_s for a in attempts if a.state == "DETECT_DOOR") for attempts in runs]
     median = statistics.median(per_run)
     return (f"Perception + planning overhead per run: median {median:.2f} s (min {per_run[0]:.2f} s, "
             f"max {per_run[-1]:.2f} s; detection median {statistics.median(detection):.2f} s); "

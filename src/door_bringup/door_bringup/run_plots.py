@@ -26,6 +26,8 @@ from door_bringup.bags.storage import read_messages  # noqa: E402
 from door_bringup.summary_figure import plot_summary  # noqa: E402
 from door_contract.converters.footsteps import path_to_footsteps  # noqa: E402
 from door_contract.converters.image import image_to_array  # noqa: E402
+from door_contract.errors import ContractError  # noqa: E402
+from door_contract.payloads import MotionFigures, PlanningOutcome, decode  # noqa: E402
 from door_contract.topics import Topics, TopicSpec  # noqa: E402
 from door_contract.vocabulary import Foot
 
@@ -67,20 +69,32 @@ def plot_footsteps(bag: Path, output: Path) -> Path | None:
     return output
 
 
+def planned_motions(bag: Path) -> list[tuple[PlanningOutcome, MotionFigures]]:
+    """The motion outcomes in ``bag`` that carry an optimised trajectory, with their figures (an
+    outcome that does not decode, as one of an older contract, is left out: nothing to plot)."""
+    motions = []
+    for message in _messages(bag, Topics.MOTION_OUTCOME):
+        try:
+            outcome = decode(PlanningOutcome, message.data)
+        except ContractError:
+            continue
+        if outcome.motion is not None and outcome.motion.optimised:
+            motions.append((outcome, outcome.motion))
+    return motions
+
+
 def plot_trajectories(bag: Path, output: Path) -> Path | None:
-    outcomes = [json.loads(m.data) for m in _messages(bag, Topics.MOTION_OUTCOME)]
-    motions = [o for o in outcomes if o.get("details", {}).get("optimised")]
+    motions = planned_motions(bag)
     if not motions:
         return None
     figure, axes = plt.subplots(len(motions), 1, figsize=(8, 2.6 * len(motions)), squeeze=False)
-    for axis, outcome in zip(axes[:, 0], motions):
-        details = outcome["details"]
-        guess, optimised = np.array(details["initial_guess"]), np.array(details["optimised"])
-        for j, name in enumerate(details["joint_names"]):
+    for axis, (outcome, figures) in zip(axes[:, 0], motions):
+        guess, optimised = np.array(figures.initial_guess), np.array(figures.optimised)
+        for j, name in enumerate(figures.joint_names):
             line, = axis.plot(optimised[:, j], label=name)
             axis.plot(guess[:, j], "--", color=line.get_color(), alpha=0.6)
-        axis.set_title(f"request {outcome['request_id']}: cost {details.get('cost')}, "
-                       f"{outcome['planning_time_s'] * 1000:.0f} ms (dashed: initial guess)", fontsize=9)
+        axis.set_title(f"request {outcome.request_id}: cost {figures.cost}, "
+                       f"{outcome.planning_time_s * 1000:.0f} ms (dashed: initial guess)", fontsize=9)
         axis.set_ylabel("rad")
     axes[-1, 0].set_xlabel("waypoint")
     axes[0, 0].legend(fontsize=6, ncol=3, loc="best")

@@ -3,8 +3,12 @@
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from typing import Any
+
+from door_contract.payloads import StateAttempt, decode_document
+from door_contract.vocabulary import AttemptOutcome
 
 PHASES = ("DETECT_DOOR", "WALK_TO_DOOR", "OPEN_DOOR", "WALK_THROUGH")
 
@@ -29,23 +33,31 @@ def phase_of(state_label: str) -> str:
     return state_label.split("/", 1)[0]
 
 
-def phase_rows(reports: Iterable[dict]) -> list[PhaseRow]:
+def state_attempts(report: Mapping[str, Any]) -> list[StateAttempt]:
+    """The state attempts of a run's report (a dict: the main job's, or one read back from
+    ``report.json`` / ``trial.json``), each as the FSM reported it (a ContractError names a
+    malformed one)."""
+    return [attempt if isinstance(attempt, StateAttempt) else decode_document(StateAttempt, attempt)
+            for attempt in report["attempts"]]
+
+
+def phase_rows(reports: Iterable[Mapping[str, Any]]) -> list[PhaseRow]:
     """Rows over one or many TaskReports (dicts): a phase succeeds in a run when its last
     attempt succeeded and the run went on past it."""
     totals: dict[str, list[float]] = defaultdict(lambda: [0, 0, 0.0, 0.0, 0.0])
     for report in reports:
         seen: dict[str, dict] = {}
-        for attempt in report["attempts"]:
-            phase = phase_of(attempt["state"])
+        for attempt in state_attempts(report):
+            phase = phase_of(attempt.state)
             entry = seen.setdefault(phase, {"ok": True, "plan": 0.0, "move": 0.0, "wait": 0.0})
-            entry["plan"] += attempt["planning_s"]
-            entry["move"] += attempt["moving_s"]
-            entry["wait"] += attempt["waiting_s"]
-            entry["last"] = attempt["outcome"]
+            entry["plan"] += attempt.planning_s
+            entry["move"] += attempt.moving_s
+            entry["wait"] += attempt.waiting_s
+            entry["last"] = attempt.outcome
         for phase, entry in seen.items():
             row = totals[phase]
             row[0] += 1
-            row[1] += 1 if entry["last"] == "succeeded" else 0
+            row[1] += 1 if entry["last"] is AttemptOutcome.SUCCEEDED else 0
             row[2] += entry["plan"]
             row[3] += entry["move"]
             row[4] += entry["wait"]

@@ -3,15 +3,16 @@ state (:mod:`door_fsm.machine`)."""
 
 from __future__ import annotations
 
+from door_contract.payloads import ProposalSummary
 from door_fsm.operator_commands import OperatorCommand, OperatorWord
 from door_fsm.states import Phase
 from door_fsm.work import StateWork
 
 
-def approval_text(state_label: str, request_id: int, work: StateWork, summary: dict) -> str:
+def approval_text(state_label: str, request_id: int, work: StateWork, summary: ProposalSummary) -> str:
     """``WALK_TO_DOOR #7: approve footsteps 'stand'? steps=14 | reply 'approve 7', …``."""
-    details = ", ".join(f"{k}={v}" for k, v in summary.items())
-    return (f"{state_label} #{request_id}: approve {work.kind.value} '{work.subject}'? {details} "
+    figures = ", ".join(f"{k}={v}" for k, v in summary.items())
+    return (f"{state_label} #{request_id}: approve {work.kind.value} '{work.subject}'? {figures} "
             f"| reply 'approve {request_id}', 'reject {request_id}' or 'repeat {request_id}'; "
             f"pause, stop, abort, manual")
 

@@ -43,8 +43,8 @@ class DoorContext:
 
     def planned(self, outcome: PlanningOutcome) -> None:
         """A motion proposal says where it leaves the door."""
-        if isinstance(outcome.details.get("door_angle"), (int, float)):
-            self.planned_angle = float(outcome.details["door_angle"])
+        if outcome.door_angle is not None:
+            self.planned_angle = outcome.door_angle
 
     def executed(self) -> None:
         self.angle = self.planned_angle

@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from door_contract.payloads import ProposalSummary
 from door_fsm.operator_commands import OperatorWord
 
 
@@ -13,7 +14,7 @@ class ProposalReady:
     """A planner (or the detector) answered request ``request_id`` with a proposal."""
 
     request_id: int
-    summary: dict = field(default_factory=dict)  # shown to the operator: counts, costs, durations
+    summary: ProposalSummary = field(default_factory=dict)  # shown to the operator: counts, costs, durations
     work_s: float = 0.0  # nominal execution time (trajectory duration, steps × step time), robot clock
 
 

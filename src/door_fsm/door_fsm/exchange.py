@@ -3,7 +3,7 @@ between its requests and the planners' and robot's answers, ROS-free.
 
 A planner answers a request with two messages on two topics, in either order: the proposal
 itself (a Path or JointTrajectory, stamped by the planner) and a PlanningOutcome naming the
-request id and that stamp (``details['stamp_ns']``). :class:`PlanExchange` pairs them per
+request id and that stamp (``PlanningOutcome.stamp_ns``). :class:`PlanExchange` pairs them per
 planner (``kind``), keeps the pair only for the request the machine waits on, hands the
 message out exactly once (a second ``approve`` cannot execute it twice) and remembers the
 stamp under which it was sent, so the robot's ExecutionOutcome finds its request.
@@ -79,7 +79,7 @@ class PlanExchange:
             return None
         if outcome.status is not OutcomeStatus.SUCCESS:
             return outcome
-        key = (kind, int(outcome.details.get("stamp_ns", -1)))
+        key = (kind, outcome.stamp_ns)
         message = self._messages.pop(key, None)
         if message is None:
             self._outcomes[key] = outcome

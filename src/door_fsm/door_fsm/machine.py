@@ -20,6 +20,7 @@ from collections import Counter
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from door_contract.payloads import StateAttempt
 from door_contract.vocabulary import Autonomy, DoorOpening, Motion, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
@@ -102,9 +103,9 @@ class DoorTaskMachine:
         """Check the current phase's deadline (on the phase's clock)."""
         return _one_stop(self._tick(now))
 
-    def report(self) -> list[dict]:
-        """Every state attempt so far, as plain dicts (the TaskReport's ``attempts``)."""
-        return [record.as_dict() for record in self.records]
+    def report(self) -> list[StateAttempt]:
+        """Every state attempt so far (the TaskReport's ``attempts``)."""
+        return [record.as_state_attempt() for record in self.records]
 
     def _handle(self, event: ev.Event, now: Instant) -> list[act.Action]:
         if self.state.is_terminal:

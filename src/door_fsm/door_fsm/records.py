@@ -12,6 +12,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from enum import Enum
 
+from door_contract.payloads import ProposalSummary, StateAttempt
+from door_contract.vocabulary import AttemptOutcome
 from door_fsm.states import Phase, StateOutcome, TaskState
 
 
@@ -50,7 +52,7 @@ class StateRecord:
     waiting_s: float = 0.0   # wall clock
     moving_s: float = 0.0    # robot clock
     reason: str = ""
-    summary: dict = field(default_factory=dict)
+    summary: ProposalSummary = field(default_factory=dict)
 
     def add(self, phase: Phase, seconds: float) -> None:
         if phase is Phase.PLANNING:
@@ -60,11 +62,12 @@ class StateRecord:
         else:
             self.moving_s += seconds
 
-    def as_dict(self) -> dict:
-        return {"state": self.state.label, "attempt": self.attempt,
-                "outcome": self.outcome.value if self.outcome else "unfinished",
-                "planning_s": round(self.planning_s, 4), "waiting_s": round(self.waiting_s, 4),
-                "moving_s": round(self.moving_s, 4), "reason": self.reason, "summary": self.summary}
+    def as_state_attempt(self) -> StateAttempt:
+        """This attempt as the TaskReport lists it (times rounded to 0.1 ms; unfinished while
+        the state has no outcome)."""
+        outcome = AttemptOutcome(self.outcome.value) if self.outcome else AttemptOutcome.UNFINISHED
+        return StateAttempt(self.state.label, self.attempt, outcome, round(self.planning_s, 4),
+                            round(self.waiting_s, 4), round(self.moving_s, 4), self.reason, dict(self.summary))
 
 
 def clocks_note(robot_clock: str) -> str:

@@ -1,21 +1,27 @@
-"""From a motion request to a motion library job, and from its plan to the outcome's
-details, without ROS.
+"""From a motion request to a motion library job, and from its plan to the request's
+PlanningOutcome, without ROS.
 
 The node converts messages and calls these: the motion, backend and arm a request names,
 the arm chain at the measured joint positions, the door model in the base frame, and the
-summary a :class:`~door_contract.payloads.PlanningOutcome` carries (with the initial guess
+figures a :class:`~door_contract.payloads.PlanningOutcome` carries (with the initial guess
 and the optimised trajectory for the report's before/after plot, [Zucker 2013] Fig. 4).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from door_contract.door_estimates import requested_estimate_problem
-from door_contract.payloads import DoorEstimate, MotionRequest
+from door_contract.payloads import (
+    DoorEstimate,
+    MotionFigures,
+    MotionRequest,
+    OutcomeStatus,
+    PlanningOutcome,
+    finite_or_none,
+)
 from door_contract.vocabulary import Backend, DoorOpening, Motion, Side
 from door_robot.kinematics import RobotKinematics
 from door_trajopt.chain import ArmChain
@@ -24,7 +30,7 @@ from door_trajopt.library import MotionPlan
 from door_trajopt.motions import MotionOptions, MotionSetup, start_door_for, support_polygon
 from door_trajopt.problem import TrajoptError
 
-__all__ = ["MotionJob", "PlanningRefused", "Snapshot", "motion_job", "outcome_details"]
+__all__ = ["MotionJob", "PlanningRefused", "Snapshot", "motion_figures", "motion_job", "planning_outcome"]
 
 
 class PlanningRefused(TrajoptError):
@@ -92,20 +98,34 @@ def grasping_hand(estimate: DoorEstimate, base_pose: np.ndarray) -> Side:
     return Side.LEFT if handle[1] >= 0.0 else Side.RIGHT
 
 
-def outcome_details(plan: MotionPlan | None, backend: str, proposal_stamp_ns: int = -1) -> dict[str, Any]:
-    """The details of a request's PlanningOutcome: the proposal's stamp and, with a plan, its
-    cost, violation, iterations, guesses, final door angle, duration and backend, and the
-    chain's initial guess and optimised trajectory (rounded)."""
-    details: dict[str, Any] = {"stamp_ns": proposal_stamp_ns}
+def planning_outcome(request_id: int, status: OutcomeStatus, reason: str, plan: MotionPlan | None,
+                     backend: Backend, proposal_stamp_ns: int = -1) -> PlanningOutcome:
+    """A request's PlanningOutcome: the proposal's stamp (-1: nothing proposed) and, with a plan
+    (converged or not), its planning time, the hinge angle it leaves the door at and its figures."""
     if plan is None:
-        return details
+        return PlanningOutcome(request_id, status, reason, stamp_ns=proposal_stamp_ns)
+    return PlanningOutcome(request_id, status, reason, plan.planning_time_s, proposal_stamp_ns,
+                           finite_or_none(round(float(plan.final_door[0]), 5)),
+                           motion=motion_figures(plan, backend))
+
+
+def motion_figures(plan: MotionPlan, backend: Backend) -> MotionFigures:
+    """A plan's cost, violation, iterations, guesses, duration and backend (rounded; not finite:
+    None) and, with a trajectory, the chain's initial guess and optimised trajectory."""
     result = plan.result
-    details.update(cost=round(result.cost, 6), max_violation=float(f"{result.max_violation:.3g}"),
-                   iterations=result.iterations, attempts=plan.attempts, door_angle=round(plan.final_door[0], 5),
-                   duration_s=round(float(plan.path.times[-1]), 3) if plan.path else 0.0, backend=backend)
-    if plan.path is not None and plan.initial_guess is not None:
-        k = len(plan.path.joint_names)
-        details.update(joint_names=list(plan.path.joint_names),
-                       initial_guess=np.round(plan.initial_guess[:, :k], 4).tolist(),
-                       optimised=np.round(plan.result.trajectory[:, :k], 4).tolist())
-    return details
+    figures = MotionFigures(finite_or_none(round(float(result.cost), 6)),
+                            finite_or_none(float(f"{result.max_violation:.3g}")), int(result.iterations),
+                            plan.attempts, round(float(plan.path.times[-1]), 3) if plan.path else 0.0, backend)
+    if plan.path is None or plan.initial_guess is None:
+        return figures
+    k = len(plan.path.joint_names)
+    guess, optimised = plan.initial_guess[:, :k], result.trajectory[:, :k]
+    if not (np.all(np.isfinite(guess)) and np.all(np.isfinite(optimised))):
+        return figures  # a diverged trajectory: nothing to plot, and JSON has no NaN
+    return replace(figures, joint_names=tuple(plan.path.joint_names), initial_guess=_rows(guess),
+                   optimised=_rows(optimised))
+
+
+def _rows(array: np.ndarray) -> tuple[tuple[float, ...], ...]:
+    """The rows of ``array`` rounded to 10⁻⁴ (rad), as tuples."""
+    return tuple(tuple(row) for row in np.round(array, 4).tolist())

@@ -9,7 +9,7 @@ non-finite inputs and infeasible plans give a failure outcome naming the reason.
 request whose id can be read gets exactly one outcome; planning runs on a worker thread
 (the robot model is used there only), the newest request or a cancel on
 ``/trajectory_optimizer/cancel`` supersedes an older one (:mod:`door_contract.planner_service`).
-The library job of a request and the outcome's details are built by :mod:`door_trajopt.requests`.
+The library job of a request and its outcome are built by :mod:`door_trajopt.requests`.
 """
 
 from __future__ import annotations
@@ -32,14 +32,7 @@ from door_contract.node_support import (
     declare_parameters,
     node_main,
 )
-from door_contract.payloads import (
-    DoorEstimate,
-    MotionRequest,
-    OutcomeStatus,
-    PlanningOutcome,
-    encode,
-    without_non_finite,
-)
+from door_contract.payloads import DoorEstimate, MotionRequest, OutcomeStatus, encode
 from door_contract.planner_desk import PlannerDesk
 from door_contract.planner_inputs import PlannerInputs
 from door_contract.planner_service import Finished
@@ -53,7 +46,7 @@ from door_trajopt.library import MotionLibrary, MotionPlan
 from door_trajopt.motions import DoorStateOutOfRange, MotionOptions
 from door_trajopt.parameters import NODE_NAME, OPTIMIZER_PARAMETERS
 from door_trajopt.problem import TrajoptError
-from door_trajopt.requests import PlanningRefused, Snapshot, motion_job, outcome_details
+from door_trajopt.requests import PlanningRefused, Snapshot, motion_job, planning_outcome
 
 BAD_INPUT = (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)
 """What a request's planning raises for bad input (answered REJECTED); anything else (any other
@@ -126,9 +119,8 @@ class TrajectoryOptimizerNode(Node):
 
     def _answer(self, request_id: int, motion: str, backend: Backend | None, status: OutcomeStatus, reason: str,
                 plan: MotionPlan | None = None, proposal_stamp_ns: int = -1) -> None:
-        details = outcome_details(plan, str(backend or self.parameters["backend"]), proposal_stamp_ns)
-        outcome = PlanningOutcome(request_id, status, reason, plan.planning_time_s if plan else 0.0,
-                                  without_non_finite(details))  # a diverged plan's NaN cost must not stop it
+        outcome = planning_outcome(request_id, status, reason, plan, Backend(backend or self.parameters["backend"]),
+                                   proposal_stamp_ns)
         self.outcome_pub.publish(String(data=encode(outcome)))
         line = f"request {request_id} ({motion}): {status.value}"
         if status is OutcomeStatus.SUCCESS and plan is not None:  # rclpy: one severity per call site

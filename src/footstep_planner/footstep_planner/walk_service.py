@@ -19,15 +19,14 @@ The node hands every request to a :class:`WalkService` in two halves:
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from door_contract.converters.footsteps import FootPlacement
 from door_contract.errors import ContractError
 from door_contract.marker_shapes import MarkerShape
-from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, without_non_finite
+from door_contract.payloads import DoorEstimate, FootstepFigures, FootstepRequest, OutcomeStatus, PlanningOutcome
 from door_contract.planner_service import Finished
 from door_contract.stamps import UniqueStamps
 from door_contract.vocabulary import DoorOpening, WalkGoal
@@ -68,13 +67,14 @@ class Solved:
 
 @dataclass(frozen=True)
 class Answer:
-    """How one request is answered, and what is proposed with it (SUCCESS only: the footsteps,
-    even index = left foot, their markers and the stamp, ns, the proposal carries)."""
+    """How one request is answered: the search's figures (None when no search ran) and what is
+    proposed with it (SUCCESS only: the footsteps, even index = left foot, their markers and the
+    stamp, ns, the proposal carries)."""
 
     status: OutcomeStatus
     reason: str = ""
     planning_time_s: float = 0.0
-    details: Mapping[str, object] = field(default_factory=dict)
+    figures: FootstepFigures | None = None
     footsteps: tuple[FootPlacement, ...] = ()
     shapes: tuple[MarkerShape, ...] = ()
     stamp_ns: int = -1
@@ -82,9 +82,9 @@ class Answer:
     """The exception's repr when a bug ended the request (it is then a FAILURE)."""
 
     def outcome(self, request_id: int) -> PlanningOutcome:
-        """The PlanningOutcome of ``request_id`` (non-finite figures as null: it must go out)."""
-        return PlanningOutcome(request_id, self.status, self.reason, self.planning_time_s,
-                               without_non_finite(dict(self.details)))
+        """The PlanningOutcome of ``request_id``: the stamp of the proposal and the figures."""
+        return PlanningOutcome(request_id, self.status, self.reason, self.planning_time_s, stamp_ns=self.stamp_ns,
+                               footsteps=self.figures)
 
 
 class WalkService:
@@ -127,13 +127,12 @@ class WalkService:
         result, start = solved.result, solved.problem.start
         if not result.succeeded or result.plan is None:
             return Answer(OutcomeStatus.FAILURE, f"{result.outcome.value}: {result.reason}", result.planning_time,
-                          {"expansions": result.expansions})
+                          FootstepFigures(result.expansions))
         self.planned_stance = result.plan.final_stance
         footsteps = contract_footsteps(start, result.plan)
         shapes = footstep_shapes(footsteps, self.options.foot_length, self.options.foot_width)
         stamp = self._stamps.next(now_ns)
         length = walked_length(start, solved.problem.legs[-1].goal)
-        details = {"stamp_ns": stamp, "steps": len(result.plan.steps), "length_m": round(length, 3),
-                   "expansions": result.expansions}
-        return Answer(OutcomeStatus.SUCCESS, "", result.planning_time, details, tuple(footsteps), tuple(shapes),
+        figures = FootstepFigures(result.expansions, len(result.plan.steps), round(length, 3))
+        return Answer(OutcomeStatus.SUCCESS, "", result.planning_time, figures, tuple(footsteps), tuple(shapes),
                       stamp)
