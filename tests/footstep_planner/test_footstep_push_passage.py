@@ -10,8 +10,9 @@ from footstep_planner.astar import FootstepPlanner
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.goals import PUSH_LINE_CLEARANCE, push_line, push_stand_pose
 from footstep_planner.legs import plan_legs
+from footstep_planner.plan import InputProblem
 from footstep_planner.push_passage import PUSH_LEG_NAMES, PushPassage
-from footstep_planner.requests import GoalSettings, options_for_problem, walk_problem
+from footstep_planner.requests import GoalSettings, WalkPlanners, options_for_problem, walk_problem
 
 SIDEWAYS = GoalSettings.from_parameters({"push_passage": "sideways"})
 
@@ -88,3 +89,28 @@ def test_the_door_is_walked_to_and_passed_sideways_within_the_step_limits(width:
     beyond = passage.door.to_door(end.x, end.y)[1]
     assert beyond <= -SIDEWAYS.beyond_door + options.goal_position_tolerance
     assert abs(math.remainder(end.yaw - door.facing_yaw, 2 * math.pi)) <= options.goal_yaw_tolerance
+
+
+@pytest.mark.parametrize("hinge", list(HingeSide))
+def test_a_passage_from_inside_the_margins_by_the_latch_post_is_planned_without_them_for_its_first_leg(
+        hinge: HingeSide) -> None:
+    """The robot stands 3 cm nearer the latch post than its stand pose (as a measured stance
+    after the opening once did): with the margins the body box touches the post and the
+    passage is refused; WalkPlanners plans the first leg without the margins, says why, and the
+    plan steps away from the post. (Each of the three repeats had failed alike.)"""
+    options = profile_options()
+    door = door_facing_robot(DoorOpening.PUSH, hinge_side=hinge, leaf_width=0.80, clear_opening=0.80,
+                             handle_offset=0.07)
+    stand = push_stand_pose(door, options, reach=SIDEWAYS.push_side_reach, offset=SIDEWAYS.push_stand_offset)
+    towards_latch = PUSH_LINE_CLEARANCE + options.body_margin / 2.0  # inside the margin, clear of the body
+    crowded = Pose2D(stand.x + towards_latch * math.cos(stand.yaw), stand.y + towards_latch * math.sin(stand.yaw),
+                     stand.yaw)
+    passage = walk_problem(WalkGoal.THROUGH, door, Stance.nominal(crowded, options.nominal_foot_separation),
+                           options, SIDEWAYS)
+    search = options_for_problem(passage, WalkGoal.THROUGH, options)
+    refused = plan_legs(FootstepPlanner(passage.world, search), passage.start, passage.legs)
+    assert refused.input_problem is InputProblem.START_COLLIDES, refused.reason
+    through, relaxed_from = WalkPlanners().plan(passage, search)
+    assert through.succeeded, through.reason
+    assert "post" in relaxed_from
+    assert through.plan is not None and kinematic_violations(through.plan, options) == []

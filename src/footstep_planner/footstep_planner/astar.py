@@ -151,12 +151,17 @@ class FootstepPlanner:
         Returns the result and, when the margins were dropped, why (else "").
         """
         result = self.plan(start, goal, attempt=attempt)
-        if result.input_problem is not InputProblem.START_COLLIDES:
+        tight = self.without_margins()
+        if result.input_problem is not InputProblem.START_COLLIDES or tight is None:
             return result, ""
-        if self._options.body_margin == 0.0 and self._options.foot_margin == 0.0:
-            return result, ""
-        tight = FootstepPlanner(self._world, replace(self._options, body_margin=0.0, foot_margin=0.0))
         return tight.plan(start, goal, attempt=attempt), result.reason
+
+    def without_margins(self) -> FootstepPlanner | None:
+        """This planner with zero body and foot margins (None when it has none to drop): what
+        plans the first steps of a robot that already stands inside the margins."""
+        if self._options.body_margin == 0.0 and self._options.foot_margin == 0.0:
+            return None
+        return FootstepPlanner(self._world, replace(self._options, body_margin=0.0, foot_margin=0.0))
 
     def _reject(self, start: Stance, goal: Pose2D) -> tuple[PlanOutcome, InputProblem, str] | None:
         """Why the request cannot be planned at all, or None."""

@@ -35,7 +35,7 @@ class Leg:
 
 
 def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2D | Leg],
-              attempt: int = 0) -> PlanResult:
+              attempt: int = 0, first_leg_planner: FootstepPlanner | None = None) -> PlanResult:
     """Plan start → waypoints[0] → … → waypoints[-1]; each leg starts from the stance the
     previous one ended in. The feet keep alternating across legs: a leg's first step is by
     the foot that did not end the previous one, so a walk and its mirror image step alike
@@ -47,6 +47,9 @@ def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2
     The first leg that fails ends the request with its outcome, its reason prefixed by
     the leg's number (and name); expansions and time are totals over the legs planned.
     Every leg gets the expansion budget of ``attempt`` (:meth:`FootstepPlanner.plan`).
+    ``first_leg_planner`` plans the first leg instead of ``planner`` (e.g. without the safety
+    margins, for a robot that stands inside them: only the first leg starts where the robot
+    stands, every later one where a leg planned with the margins ended).
     """
     started = time.perf_counter()
     if not waypoints:
@@ -55,11 +58,12 @@ def plan_legs(planner: FootstepPlanner, start: Stance, waypoints: Sequence[Pose2
     steps: list[Footstep] = []
     legs = [Leg.of(waypoint) for waypoint in waypoints]
     for number, leg in enumerate(legs, start=1):
-        result = planner.plan(stance, leg.goal, leg.pruning, attempt=attempt,
-                              first_foot=steps[-1].foot.other if steps else None)
+        leg_planner = first_leg_planner if number == 1 and first_leg_planner is not None else planner
+        result = leg_planner.plan(stance, leg.goal, leg.pruning, attempt=attempt,
+                                  first_foot=steps[-1].foot.other if steps else None)
         if not result.succeeded and steps:
             expansions += result.expansions
-            result = planner.plan(stance, leg.goal, leg.pruning, attempt=attempt)
+            result = leg_planner.plan(stance, leg.goal, leg.pruning, attempt=attempt)
         expansions += result.expansions
         if not result.succeeded or result.plan is None:  # a search that succeeded has a plan
             label = f"leg {number} of {len(legs)}" + (f" ({leg.name})" if leg.name else "")

@@ -28,7 +28,7 @@ from footstep_planner.goals import push_stand_pose, stand_pose_for_opening
 from footstep_planner.legs import Leg, plan_legs
 from footstep_planner.narrow import PullPassage, passage_legs
 from footstep_planner.options import FootstepPlannerOptions
-from footstep_planner.plan import PlanResult
+from footstep_planner.plan import InputProblem, PlanResult
 from footstep_planner.pull_passage import DOORWAY_REACHED, doorway_legs, in_doorway, onward_legs, pull_passage_legs
 from footstep_planner.push_passage import PushPassage, push_passage_legs
 from footstep_planner.robot_limits import options_for_walking, planner_options
@@ -270,13 +270,19 @@ class WalkPlanners:
         self._planners: dict[FootstepPlannerOptions, FootstepPlanner] = {}
 
     def plan(self, problem: WalkProblem, options: FootstepPlannerOptions, attempt: int = 0) -> tuple[PlanResult, str]:
-        """The legs in order (:func:`~footstep_planner.legs.plan_legs`); a single leg from a
-        start inside the safety margins once more without them
-        (:meth:`~footstep_planner.astar.FootstepPlanner.plan_from_within_margins`). Returns the
-        result and, when the margins were dropped, why (else "")."""
+        """The legs in order (:func:`~footstep_planner.legs.plan_legs`); from a start inside
+        the safety margins once more with the first leg planned without them (a single leg:
+        :meth:`~footstep_planner.astar.FootstepPlanner.plan_from_within_margins`). A sideways
+        push door's measured stance after the opening once overlapped the latch post in the
+        margin-inflated body box, and all three repeats of its passage failed alike. Returns
+        the result and, when the margins were dropped, why (else "")."""
         if options not in self._planners:
             self._planners[options] = FootstepPlanner(problem.world, options)
         planner = self._planners[options].with_world(problem.world)
-        if len(problem.legs) > 1:
-            return plan_legs(planner, problem.start, problem.legs, attempt), ""
-        return planner.plan_from_within_margins(problem.start, problem.legs[0].goal, attempt)
+        if len(problem.legs) == 1:
+            return planner.plan_from_within_margins(problem.start, problem.legs[0].goal, attempt)
+        result = plan_legs(planner, problem.start, problem.legs, attempt)
+        tight = planner.without_margins()
+        if result.input_problem is not InputProblem.START_COLLIDES or tight is None:
+            return result, ""  # only the first leg starts where the robot stands
+        return plan_legs(planner, problem.start, problem.legs, attempt, first_leg_planner=tight), result.reason
