@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import difflib
 import faulthandler
+import math
 import signal
 import time
 from collections.abc import Callable, Iterable, Iterator
@@ -33,14 +34,15 @@ def _descriptor(spec: ParameterSpec) -> ParameterDescriptor:
         additional_constraints=f"allowed: {spec.allowed()}",
         read_only=True,
     )
-    is_number = isinstance(spec.default, (int, float)) and not isinstance(spec.default, bool)
-    if is_number and spec.minimum is not None and spec.maximum is not None:
+    bounds = spec.allowed_range
+    if spec.is_number and bounds is not None and math.isfinite(bounds.low) and math.isfinite(bounds.high):
+        # ROS's ranges are closed: an open end's value itself is refused by spec.validate
         if isinstance(spec.default, int):
             descriptor.integer_range = [IntegerRange(
-                from_value=int(spec.minimum), to_value=int(spec.maximum), step=0)]
+                from_value=math.ceil(bounds.low), to_value=math.floor(bounds.high), step=0)]
         else:
             descriptor.floating_point_range = [FloatingPointRange(
-                from_value=float(spec.minimum), to_value=float(spec.maximum), step=0.0)]
+                from_value=float(bounds.low), to_value=float(bounds.high), step=0.0)]
     return descriptor
 
 

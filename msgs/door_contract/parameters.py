@@ -1,11 +1,12 @@
-"""Node parameters as validated specs: description, type, unit and allowed range.
+"""Node parameters as validated specs: description, type and allowed range (with its unit).
 
 Each package lists its parameters as a tuple of :class:`ParameterSpec` in a ROS-free
 module; the node declares them with full descriptors (:func:`declare_parameters`), and
 ``params/<node>.yaml`` (ROS 2 ``--params-file`` format) holds the same defaults (a test
 keeps the two equal). A bad value raises :class:`ParameterRangeError` naming the
-parameter and its allowed range; :func:`door_contract.node_support.run_node` turns that
-into a fatal log line and exit code 2.
+parameter and its allowed range (a number's through the contract's one range check,
+:func:`door_contract.ranges.check_in_range`, in the words of every core's options);
+:func:`door_contract.node_support.run_node` turns that into a fatal log line and exit code 2.
 """
 
 from __future__ import annotations
@@ -19,45 +20,64 @@ from typing import Any
 import yaml
 
 from door_contract.errors import ParameterRangeError
+from door_contract.ranges import FieldRange, check_in_range
 
 ParameterValue = bool | int | float | str | tuple
 
 
 @dataclass(frozen=True)
 class ParameterSpec:
-    """One declared parameter. ``minimum``/``maximum`` bound numbers (inclusive)."""
+    """One declared parameter. A number's bounds and unit are ``allowed_range`` (None: any finite
+    value), the same :class:`~door_contract.ranges.FieldRange` a core checks its option with when
+    the parameter configures one (the range is then taken from the core, written once)."""
 
     name: str
     default: ParameterValue
     description: str
-    unit: str = ""
-    minimum: float | None = None
-    maximum: float | None = None
+    allowed_range: FieldRange | None = None
     choices: tuple[str, ...] = ()
+
+    @property
+    def unit(self) -> str:
+        """The unit of a number (``""`` for none)."""
+        return self.allowed_range.unit if self.allowed_range is not None else ""
+
+    @property
+    def is_number(self) -> bool:
+        """True for an ``int`` or ``float`` parameter (not a ``bool``)."""
+        return isinstance(self.default, (int, float)) and not isinstance(self.default, bool)
+
+    def numeric_range(self) -> FieldRange:
+        """The interval a number must lie in (any finite value when the spec gives none)."""
+        return self.allowed_range if self.allowed_range is not None else _ANY_NUMBER
 
     def allowed(self) -> str:
         """Human-readable allowed values, used in every error message."""
         if self.choices:
             return "one of " + ", ".join(repr(c) for c in self.choices)
-        low = "-inf" if self.minimum is None else f"{self.minimum:.10g}"
-        high = "inf" if self.maximum is None else f"{self.maximum:.10g}"
-        kind = {bool: "boolean", int: "integer", float: "number", str: "string",
-                tuple: "list"}[type(self.default)]
-        if isinstance(self.default, (bool, str, tuple)):
-            return f"a {kind}"
-        return f"{'an' if kind == 'integer' else 'a'} {kind} in [{low}, {high}]" + (
-            f" {self.unit}" if self.unit else "")
+        if self.is_number:
+            kind = "an integer" if isinstance(self.default, int) else "a number"
+            return kind if self.allowed_range is None else f"{kind} in {self.allowed_range.describe()}"
+        kind = {bool: "boolean", str: "string", tuple: "list"}[type(self.default)]
+        return f"a {kind}"
 
     def validate(self, value: Any) -> ParameterValue:
-        """``value`` converted to the default's type, or :class:`ParameterRangeError`."""
+        """``value`` converted to the default's type, or :class:`ParameterRangeError`; a number
+        is checked by :func:`~door_contract.ranges.check_in_range` against its range."""
+        if self.is_number:
+            return self._validate_number(value)
         value = self._coerce(value)
-        if isinstance(value, (int, float)) and not isinstance(value, bool):
-            if not math.isfinite(value) or (self.minimum is not None and value < self.minimum) or (
-                    self.maximum is not None and value > self.maximum):
-                raise self._error(value)
         if self.choices and value not in self.choices:
             raise self._error(value)
         return value
+
+    def _validate_number(self, value: Any) -> int | float:
+        integer = isinstance(self.default, int)
+        if not integer and isinstance(value, int) and not isinstance(value, bool):
+            value = float(value)
+        check_in_range(f"parameter '{self.name}'", value, self.numeric_range(), ParameterRangeError,
+                       integer=integer)
+        return value  # checked: an int, or a finite float
 
     def _coerce(self, value: Any) -> ParameterValue:
         expected = type(self.default)
@@ -65,8 +85,6 @@ class ParameterSpec:
             if not isinstance(value, bool):
                 raise self._error(value)
             return value
-        if expected is float and isinstance(value, (int, float)) and not isinstance(value, bool):
-            return float(value)
         if expected is tuple and isinstance(value, (list, tuple)):
             return tuple(value)
         if not isinstance(value, expected) or isinstance(value, bool):
@@ -76,6 +94,9 @@ class ParameterSpec:
     def _error(self, value: Any) -> ParameterRangeError:
         return ParameterRangeError(
             f"parameter '{self.name}' = {value!r} is invalid: expected {self.allowed()}")
+
+
+_ANY_NUMBER = FieldRange(-math.inf, math.inf, "")
 
 
 def require_ordered(values: Mapping[str, Any], low: str, high: str) -> None:

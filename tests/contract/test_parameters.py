@@ -8,8 +8,9 @@ from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH
 from door_bringup.params_files import SPECS_BY_NODE
 from door_contract.errors import ParameterRangeError
 from door_contract.parameters import ParameterSpec, defaults, read_params_file, validate_all
+from door_contract.ranges import FieldRange
 
-RATE = ParameterSpec("rate", 10.0, "a rate", unit="Hz", minimum=1.0, maximum=100.0)
+RATE = ParameterSpec("rate", 10.0, "a rate", FieldRange(1.0, 100.0, "Hz"))
 
 
 def test_every_node_has_a_params_file_equal_to_its_specs(workspace):
@@ -34,7 +35,7 @@ def test_bad_value_names_parameter_and_range(value):
 
 def test_integers_are_accepted_for_floats_but_not_the_reverse():
     assert RATE.validate(20) == 20.0
-    frames = ParameterSpec("frames", 10, "frames voted", minimum=1, maximum=100)
+    frames = ParameterSpec("frames", 10, "frames voted", FieldRange(1, 100, "frames"))
     with pytest.raises(ParameterRangeError, match="an integer"):
         frames.validate(2.5)
 

@@ -88,6 +88,12 @@ def _ranges() -> dict[str, FieldRange]:
     }
 
 
+
+def option_range(name: str) -> FieldRange:
+    """The allowed interval of option ``name`` (the order of paired options is checked apart):
+    what a node parameter configuring that option takes as its range."""
+    return _ranges()[name]
+
 @dataclass(frozen=True)
 class DetectionOptions:
     """Thresholds of the automatic (Sec. III-A) and operator-aided (Sec. III-B) detectors
