@@ -113,7 +113,7 @@ def test_no_trials_or_no_jobs_is_refused_before_anything_runs(argv):
 def _recorded(folder, **changed) -> None:
     """A Monte-Carlo folder as ``main`` writes it with its defaults (and ``changed``)."""
     settings = {"robot": "talos", "trials": 50, "seed": 0, "autonomy": "full", "camera_rate": 2.0,
-                "openings": ["pull", "push"], "timeout": 600.0, **changed}
+                "openings": ["pull", "push"], "timeout": 600.0, "ranges": "full", **changed}
     (folder / SETTINGS_FILE).write_text(json.dumps(settings))
 
 

@@ -57,6 +57,10 @@ RECORDER_CONFIRM_S = 30.0
 stops the graph: a safety net, the wait ends on the recorder's heartbeat (twice a second)."""
 
 
+APPEARANCE_PARTS = ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour")
+"""The sim bridge's colour parameters (RGB in [0, 1]) a trial may set."""
+
+
 @dataclass(frozen=True)
 class TaskOptions:
     robot: str = "talos"  # a robot profile, params/robot_<name>.yaml
@@ -79,6 +83,7 @@ class TaskOptions:
     compression: str = "none"  # "zstd": compressed mcap chunks (with storage mcap)
     camera_rate: float = 2.0  # Hz of sim time; 10 Hz cuts detection to ~0.8 s but halves the sim's speed
     foxglove_port: int | None = None  # serve the graph on ws://127.0.0.1:<port> (None: no live view)
+    colours: tuple[tuple[str, tuple[float, float, float]], ...] = ()  # (APPEARANCE_PARTS name, RGB); () keeps the sim's
 
     def node_overrides(self) -> dict[str, list[str]]:
         """``-p name:=value`` arguments per node; the robot goes to every node that declares
@@ -87,7 +92,7 @@ class TaskOptions:
             "door_opening": self.opening, "hinge_side": self.hinge, "seed": self.seed,
             "stance_distance": self.distance, "stance_lateral": self.lateral, "stance_yaw": self.yaw,
             "depth_noise": self.depth_noise, "wind_amplitude": self.wind, "door_width": self.door_width,
-            "handle_height": self.handle_height, "camera_rate": self.camera_rate}
+            "handle_height": self.handle_height, "camera_rate": self.camera_rate, **dict(self.colours)}
         fsm: dict[str, object] = {"opening": self.opening, "autonomy": self.autonomy, "backend": self.backend}
         own: dict[str, dict[str, object]] = {
             "sim_bridge": sim, "fsm_supervisor": fsm,
@@ -100,11 +105,19 @@ class TaskOptions:
 
 
 def _ros_args(values: dict[str, object]) -> list[str]:
+    """``-p name:=value`` pairs; rclpy reads each value as YAML (a list as ``[a, b]``)."""
     args = []
     for name, value in values.items():
-        text = str(value).lower() if isinstance(value, bool) else str(value)
-        args += ["-p", f"{name}:={text}"]
+        args += ["-p", f"{name}:={_yaml_value(value)}"]
     return args
+
+
+def _yaml_value(value: object) -> str:
+    if isinstance(value, bool):
+        return str(value).lower()
+    if isinstance(value, (tuple, list)):
+        return "[" + ", ".join(_yaml_value(item) for item in value) + "]"
+    return str(value)
 
 
 class ScriptedOperator(Node):

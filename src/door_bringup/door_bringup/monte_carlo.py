@@ -1,11 +1,13 @@
 """``door_monte_carlo``: the door task over randomised doors, as [Banerjee 2015]'s Table I.
 
-    python -m door_bringup.monte_carlo --trials 50 [--robot g1] [--seed 0] [--autonomy full] [--jobs 2]
+    python -m door_bringup.monte_carlo --trials 50 [--robot g1] [--seed 0] [--autonomy full] [--jobs 2] [--ranges full|narrow]
     python -m door_bringup.monte_carlo --trials 50 --resume runs/monte_carlo_<stamp>
 
 Each trial runs the whole graph (separate processes, real DDS) on a door drawn from the
 seed: push or pull, left or right hinge, start distance, lateral offset and yaw, door
-width, handle height, wind on the door and depth noise. Prints a progress bar, then
+width, handle height, wind on the door, depth noise and (``--ranges full``, the default) the
+scene's colours, within issue #13's full ranges or the earlier narrow ones
+(:mod:`door_bringup.trial_ranges`). Prints a progress bar, then
 success rates per phase and overall, and writes ``runs/monte_carlo_<stamp>/summary.md``. Every
 finished trial is kept in ``trial_<n>/trial.json``: ``--resume`` reads those and runs the rest
 (the doors come from the seed, so the same settings draw the same doors). The settings,
@@ -25,7 +27,7 @@ import sys
 import time
 from collections import Counter
 from concurrent.futures import ProcessPoolExecutor, as_completed
-from dataclasses import asdict, replace
+from dataclasses import asdict
 from datetime import UTC, datetime
 from pathlib import Path
 
@@ -36,18 +38,15 @@ from door_bringup.door_task import TaskOptions, run_task
 from door_bringup.interrupts import interrupt_on_sigterm
 from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.table_one import format_table, phase_of, phase_rows, state_attempts
+from door_bringup.trial_ranges import NARROW, RangeSet, TrialRanges, ranges_named
 from door_bringup.workspace import Workspace, repository_root
 from door_contract.vocabulary import AttemptOutcome, TaskEnd
 
 
-def sample_trial(rng: np.random.Generator, base: TaskOptions, trial: int) -> TaskOptions:
-    """One randomised door (ranges around the DRC door and Table II's working range)."""
-    return replace(base, seed=int(rng.integers(0, 2**31 - 1)),
-                   opening=str(rng.choice(["push", "pull"])), hinge=str(rng.choice(["left", "right"])),
-                   distance=float(rng.uniform(2.0, 3.5)), lateral=float(rng.uniform(-0.3, 0.3)),
-                   yaw=float(rng.uniform(-0.3, 0.3)), door_width=float(rng.uniform(0.86, 0.96)),
-                   handle_height=float(rng.uniform(0.86, 0.98)), wind=float(rng.uniform(0.0, 1.0)),
-                   depth_noise=float(rng.uniform(0.0, 0.003)))
+def sample_trial(rng: np.random.Generator, base: TaskOptions, trial: int,
+                 ranges: TrialRanges = NARROW) -> TaskOptions:
+    """One randomised door drawn from ``ranges`` (:mod:`door_bringup.trial_ranges`)."""
+    return ranges.draw(rng, base)
 
 
 def progress(done: int, total: int, successes: int, started: float) -> str:
@@ -71,6 +70,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--jobs", type=int, default=1,
                         help="trials at once, each graph in a ROS domain of its own (mind the cores: a loaded "
                              "machine slows the graph, not the result)")
+    parser.add_argument("--ranges", choices=[r.value for r in RangeSet], default=RangeSet.FULL.value,
+                        help="full: issue #13's (start 1-4 m, +-0.6 m, +-0.6 rad; doors 0.80-1.00 m, lever "
+                             "0.85-1.10 m, wind <= 3 N m, depth noise <= 0.005, random colours); narrow: the "
+                             "earlier campaigns' (door_bringup.trial_ranges)")
     parser.add_argument("--resume", type=Path, metavar="RUN_DIR",
                         help="a monte_carlo_<stamp> folder: its finished trials are read, the rest run")
     args = parser.parse_args(argv)
@@ -80,14 +83,16 @@ def main(argv: list[str] | None = None) -> int:
     interrupt_on_sigterm()
     workspace = Workspace(repository_root())
     settings = {"robot": args.robot, "trials": args.trials, "seed": args.seed, "autonomy": args.autonomy,
-                "camera_rate": args.camera_rate, "openings": sorted(args.openings), "timeout": args.timeout}
+                "camera_rate": args.camera_rate, "openings": sorted(args.openings), "timeout": args.timeout,
+                "ranges": args.ranges}
     try:
         out = _run_folder(workspace, args.resume, settings)
     except ResumeError as error:
         parser.error(str(error))
     base = TaskOptions(robot=args.robot, autonomy=args.autonomy, timeout_s=args.timeout, record=False,
                        camera_rate=args.camera_rate)
-    trials = draw_trials(np.random.default_rng(args.seed), base, args.trials, args.openings)
+    trials = draw_trials(np.random.default_rng(args.seed), base, args.trials, args.openings,
+                         ranges_named(RangeSet(args.ranges)))
     reports = run_trials(trials, out, workspace, args.jobs)
     text = f"Robot: {args.robot}\n\n" + summary(reports)
     print(text)
@@ -96,13 +101,14 @@ def main(argv: list[str] | None = None) -> int:
     return 0
 
 
-def draw_trials(rng: np.random.Generator, base: TaskOptions, count: int, openings: list[str]) -> list[TaskOptions]:
-    """The seed's doors, in order (redrawn until the opening is one of ``openings``)."""
+def draw_trials(rng: np.random.Generator, base: TaskOptions, count: int, openings: list[str],
+                ranges: TrialRanges = NARROW) -> list[TaskOptions]:
+    """The seed's doors from ``ranges``, in order (redrawn until the opening is one of ``openings``)."""
     trials = []
     for trial in range(count):
-        options = sample_trial(rng, base, trial)
+        options = sample_trial(rng, base, trial, ranges)
         while options.opening not in openings:
-            options = sample_trial(rng, base, trial)
+            options = sample_trial(rng, base, trial, ranges)
         trials.append(options)
     return trials
 
@@ -130,8 +136,9 @@ class ResumeError(Exception):
 
 
 SETTINGS_FILE = "monte_carlo.json"
-RECORDED_BEFORE = {"robot": "talos"}
-"""What a setting a folder does not record was: folders written before ``--robot`` ran TALOS."""
+RECORDED_BEFORE = {"robot": "talos", "ranges": RangeSet.NARROW.value}
+"""What a setting a folder does not record was: folders written before ``--robot`` ran TALOS,
+before ``--ranges`` the narrow ranges."""
 TRIAL_FILE = "trial.json"
 
 
