@@ -3,16 +3,18 @@ packages' validated options.
 
 Each package raises its own error type when a value is outside (the rosbags layout: per-package
 errors), through :func:`check_in_range`; the interval and its wording are the same everywhere:
-``<owner>.<field> = <value> is outside the allowed range [low, high] <unit>``.
+``<owner>.<field> = <value> is outside the allowed range [low, high] <unit>``. A package states
+its options' intervals once, as a table of :class:`FieldRange` by field name checked by
+:func:`check_fields`; a node parameter configuring an option takes the option's interval.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass
 
-__all__ = ["FieldRange", "check_in_range"]
+__all__ = ["FieldRange", "check_fields", "check_in_range"]
 
 
 @dataclass(frozen=True)
@@ -49,3 +51,13 @@ def check_in_range(label: str, value: object, allowed: FieldRange, error: Callab
         raise error(f"{label} must be {kind} in {allowed.describe()}, got {value!r}")
     if not math.isfinite(value) or not allowed.admits(value):
         raise error(f"{label} = {value!r} is outside the allowed range {allowed.describe()}")
+
+
+def check_fields(owner: object, ranges: Mapping[str, FieldRange], error: Callable[[str], Exception],
+                 label: str = "", integers: Collection[str] = ()) -> None:
+    """:func:`check_in_range` for each attribute of ``owner`` named in ``ranges``, in order; the
+    names in ``integers`` must be ``int``. Each is labelled ``<label>.<name>`` (``name`` alone
+    without a label)."""
+    for name, allowed in ranges.items():
+        check_in_range(f"{label}.{name}" if label else name, getattr(owner, name), allowed, error,
+                       integer=name in integers)

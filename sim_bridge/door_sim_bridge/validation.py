@@ -1,5 +1,6 @@
 """Range checks of the sim bridge's validated options: the contract's one check
-(:func:`door_contract.ranges.check_in_range`), one error type.
+(:func:`door_contract.ranges.check_in_range`) over :class:`~door_contract.ranges.FieldRange`
+tables, one error type.
 
 A value outside its interval raises :class:`~door_sim_bridge.errors.SimulationError` naming
 the option's owner, field, interval and unit, so a node can log it verbatim and refuse to
@@ -8,17 +9,30 @@ start.
 
 from __future__ import annotations
 
-from door_contract.ranges import FieldRange, check_in_range
+from collections.abc import Collection, Mapping
+
+from door_contract.ranges import FieldRange, check_fields, check_in_range
 from door_sim_bridge.errors import SimulationError
 
+__all__ = ["FieldRange", "check_ranges", "require"]
 
-def require(owner: str, name: str, value: object, low: float, high: float, unit: str = "") -> None:
-    """Raise :class:`SimulationError` unless ``value`` is a finite real number in [low, high]."""
-    check_in_range(f"{owner}.{name}", value, FieldRange(low, high, unit), SimulationError)
+Bounds = FieldRange | tuple[float, float, str]
+"""A field's interval: a :class:`FieldRange`, or the ``(low, high, unit)`` of a closed one as
+:mod:`door_sim_bridge.walking` still states its options'."""
 
 
-def check_ranges(owner: object, ranges: dict[str, tuple[float, float, str]]) -> None:
-    """:func:`require` for each field of ``owner`` named in ``ranges`` (low, high, unit)."""
-    name = type(owner).__name__
-    for key, (low, high, unit) in ranges.items():
-        require(name, key, getattr(owner, key), low, high, unit)
+def require(owner: str, name: str, value: object, allowed: FieldRange, integer: bool = False) -> None:
+    """Raise :class:`SimulationError` naming ``<owner>.<name>`` unless ``value`` is a finite real
+    number (an ``int`` when ``integer``) within ``allowed``."""
+    check_in_range(f"{owner}.{name}", value, allowed, SimulationError, integer)
+
+
+def check_ranges(owner: object, ranges: Mapping[str, Bounds], integers: Collection[str] = ()) -> None:
+    """:func:`require` for each field of ``owner`` named in ``ranges`` (those in ``integers`` as
+    ``int``), labelled by the owner's type."""
+    check_fields(owner, {name: _field_range(bounds) for name, bounds in ranges.items()}, SimulationError,
+                 type(owner).__name__, integers)
+
+
+def _field_range(bounds: Bounds) -> FieldRange:
+    return bounds if isinstance(bounds, FieldRange) else FieldRange(*bounds)

@@ -18,10 +18,21 @@ from enum import Enum
 
 from door_contract.vocabulary import DoorOpening, HingeSide
 from door_sim_bridge.errors import SimulationError
-from door_sim_bridge.validation import check_ranges
-from door_sim_bridge.validation import require as _require
+from door_sim_bridge.validation import FieldRange, check_ranges, require
 from door_sim_bridge.walking.gait import GaitOptions
 from door_sim_bridge.walking.stabilizer import StabilizerOptions
+from door_sim_bridge.world_ranges import (
+    CAMERA_RANGES,
+    COLOUR_COMPONENT,
+    DIRECTION_COMPONENT,
+    DOOR_RANGES,
+    EXECUTION_RANGES,
+    FALL_RANGES,
+    POSTURE_OVERRIDE,
+    STANCE_RANGES,
+    WIND_RANGES,
+    WORLD_RANGES,
+)
 
 Colour = tuple[float, float, float]
 """RGB in [0, 1]."""
@@ -61,12 +72,6 @@ class RobotVisuals(str, Enum):
     NONE = "none"
 
 
-def _require_int(owner: str, name: str, value: object, low: int, high: int) -> None:
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise SimulationError(f"{owner}.{name} must be an integer in [{low}, {high}], got {value!r}")
-    _require(owner, name, value, low, high)
-
-
 def _require_enum(owner: str, name: str, value: object, kind: type[Enum]) -> None:
     if not isinstance(value, kind):
         allowed = ", ".join(member.value for member in kind)
@@ -77,7 +82,7 @@ def _require_colour(owner: str, name: str, value: object) -> None:
     if not isinstance(value, tuple) or len(value) != 3:
         raise SimulationError(f"{owner}.{name} must be an (r, g, b) tuple in [0, 1], got {value!r}")
     for component in value:
-        _require(owner, name, component, 0.0, 1.0)
+        require(owner, name, component, COLOUR_COMPONENT)
 
 
 def _require_direction(owner: str, name: str, value: object) -> None:
@@ -85,7 +90,7 @@ def _require_direction(owner: str, name: str, value: object) -> None:
     if not isinstance(value, tuple) or len(value) != 3:
         raise SimulationError(f"{owner}.{name} must be an (x, y, z) tuple, got {value!r}")
     for component in value:
-        _require(owner, name, component, -1e6, 1e6)
+        require(owner, name, component, DIRECTION_COMPONENT)
     if math.hypot(*value) < 1e-9:
         raise SimulationError(f"{owner}.{name} = {value!r} has no direction (zero length)")
 
@@ -102,8 +107,7 @@ class WindConfig:
     bias: float = 0.0  # N·m
 
     def __post_init__(self) -> None:
-        check_ranges(self, {"amplitude": (0.0, 100.0, "N·m"), "frequency": (0.0, 10.0, "Hz"),
-                             "bias": (-100.0, 100.0, "N·m")})
+        check_ranges(self, WIND_RANGES)
 
     @property
     def enabled(self) -> bool:
@@ -165,42 +169,26 @@ class DoorConfig:
     def __post_init__(self) -> None:
         _require_enum("DoorConfig", "opening", self.opening, DoorOpening)
         _require_enum("DoorConfig", "hinge_side", self.hinge_side, HingeSide)
-        check_ranges(self, _DOOR_RANGES)
+        check_ranges(self, DOOR_RANGES)
         self._check_relations()
         self._check_colours()
         if not isinstance(self.wind, WindConfig):
             raise SimulationError(f"DoorConfig.wind must be a WindConfig, got {self.wind!r}")
 
     def _check_relations(self) -> None:
+        """The intervals that depend on other fields (each within its own of :data:`DOOR_RANGES`)."""
         top = self.floor_gap + self.height
-        _require("DoorConfig", "handle_height", self.handle_height, self.floor_gap + 0.2, top - 0.2, "m")
-        _require("DoorConfig", "lever_length", self.lever_length, 0.05,
-                 self.width - self.handle_backset - 0.02, "m")
-        _require("DoorConfig", "latch_release_angle", self.latch_release_angle, 0.05,
-                 self.handle_max_angle - 0.05, "rad")
-        _require("DoorConfig", "latch_play", self.latch_play, 0.0, self.latch_engage_angle, "rad")
+        check_ranges(self, {
+            "handle_height": FieldRange(self.floor_gap + 0.2, top - 0.2, "m"),
+            "lever_length": FieldRange(0.05, self.width - self.handle_backset - 0.02, "m"),
+            "latch_release_angle": FieldRange(0.05, self.handle_max_angle - 0.05, "rad"),
+            "latch_play": FieldRange(0.0, self.latch_engage_angle, "rad")})
 
     def _check_colours(self) -> None:
         """Each colour must be RGB in [0, 1]; any combination renders, so none is refused (a
         white leaf on a white wall is a scene to detect, not a configuration error)."""
         for name in ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour"):
             _require_colour("DoorConfig", name, getattr(self, name))
-
-
-_DOOR_RANGES: dict[str, tuple[float, float, str]] = {
-    "width": (0.5, 1.5, "m"), "height": (1.5, 3.0, "m"), "thickness": (0.01, 0.1, "m"),
-    "mass": (1.0, 200.0, "kg"), "floor_gap": (0.0, 0.05, "m"),
-    "handle_height": (0.4, 2.0, "m"), "handle_backset": (0.03, 0.2, "m"),
-    "lever_length": (0.05, 0.25, "m"), "lever_standoff": (0.03, 0.12, "m"),
-    "grasp_fraction": (0.2, 1.0, ""), "handle_max_angle": (0.2, 1.5, "rad"),
-    "hinge_max_angle": (0.5, 3.0, "rad"), "latch_release_angle": (0.05, 1.45, "rad"),
-    "latch_engage_angle": (0.002, 0.2, "rad"), "latch_play": (0.0, 0.2, "rad"),
-    "closer_stiffness": (0.0, 200.0, "N·m/rad"), "closer_preload": (0.0, 50.0, "N·m"),
-    "hinge_damping": (0.0, 100.0, "N·m·s/rad"), "hinge_friction": (0.0, 20.0, "N·m"),
-    "handle_stiffness": (0.0, 20.0, "N·m/rad"), "handle_preload": (0.0, 5.0, "N·m"),
-    "handle_damping": (0.0, 5.0, "N·m·s/rad"), "handle_friction": (0.0, 2.0, "N·m"),
-    "handle_mass": (0.05, 5.0, "kg"),
-}
 
 
 @dataclass(frozen=True)
@@ -212,8 +200,7 @@ class StanceConfig:
     yaw: float = 0.0  # rad relative to facing the door (+x)
 
     def __post_init__(self) -> None:
-        check_ranges(self, {"distance": (0.3, 8.0, "m"), "lateral_offset": (-3.0, 3.0, "m"),
-                             "yaw": (-math.pi, math.pi, "rad")})
+        check_ranges(self, STANCE_RANGES)
 
 
 @dataclass(frozen=True)
@@ -241,14 +228,8 @@ class CameraConfig:
 
     def __post_init__(self) -> None:
         _require_direction("CameraConfig", "light_direction", self.light_direction)
-        _require_int("CameraConfig", "width", self.width, 16, 4096)
-        _require_int("CameraConfig", "height", self.height, 16, 4096)
-        check_ranges(self, {"vertical_fov_deg": (10.0, 120.0, "deg"), "near": (0.01, 1.0, "m"),
-                             "frame_rate_hz": (0.1, 60.0, "Hz"),
-                             "depth_noise_coefficient": (0.0, 0.1, "1/m"),
-                             "colour_noise_sigma": (0.0, 50.0, "levels"),
-                             "head_pitch": (-1.0, 1.0, "rad")})
-        _require("CameraConfig", "far", self.far, self.near + 0.1, 100.0, "m")
+        check_ranges(self, CAMERA_RANGES, integers=("width", "height"))
+        require("CameraConfig", "far", self.far, FieldRange(self.near + 0.1, 100.0, "m"))
         _require_enum("CameraConfig", "robot_visuals", self.robot_visuals, RobotVisuals)
 
 
@@ -266,11 +247,7 @@ class ExecutionConfig:
     collision_depth: float = 0.01  # m of penetration into the wall or frame that stops walking
 
     def __post_init__(self) -> None:
-        check_ranges(self, {"settle_time": (0.0, 5.0, "s"), "goal_tolerance": (1e-4, 1.0, "rad"),
-                             "held_wrist_tolerance": (1e-4, 1.0, "rad"),
-                             "start_tolerance": (1e-4, 3.2, "rad"),
-                             "velocity_limit_scale": (0.1, 10.0, ""),
-                             "step_duration": (0.05, 10.0, "s"), "collision_depth": (0.0, 0.5, "m")})
+        check_ranges(self, EXECUTION_RANGES)
 
 
 @dataclass(frozen=True)
@@ -286,7 +263,7 @@ class FallConfig:
     max_tilt: float = 0.6  # rad between the base's z axis and the vertical
 
     def __post_init__(self) -> None:
-        check_ranges(self, {"height_fraction": (0.1, 0.95, ""), "max_tilt": (0.1, 1.5, "rad")})
+        check_ranges(self, FALL_RANGES)
 
 
 @dataclass(frozen=True)
@@ -322,12 +299,7 @@ class WorldConfig:
                            ("stabilizer", StabilizerOptions), ("fall", FallConfig)):
             if not isinstance(getattr(self, name), kind):
                 raise SimulationError(f"WorldConfig.{name} must be a {kind.__name__}")
-        _require_int("WorldConfig", "seed", self.seed, 0, 2**31 - 1)
-        _require_int("WorldConfig", "grasp_break_steps", self.grasp_break_steps, 1, 1000)
-        check_ranges(self, {"physics_rate": (60.0, 2000.0, "Hz"), "gravity": (0.0, 20.0, "m/s²"),
-                             "grasp_distance": (0.001, 0.2, "m"),
-                             "grasp_break_force": (1.0, 1e5, "N"),
-                             "joint_force_scale": (0.1, 100.0, ""), "floor_friction": (0.05, 3.0, "")})
+        check_ranges(self, WORLD_RANGES, integers=("seed", "grasp_break_steps"))
         _require_enum("WorldConfig", "robot_mode", self.robot_mode, RobotMode)
         _require_enum("WorldConfig", "grasp_model", self.grasp_model, GraspModel)
         self._check_overrides()
@@ -337,10 +309,11 @@ class WorldConfig:
             if (not isinstance(entry, tuple) or len(entry) != 2 or not isinstance(entry[0], str)):
                 raise SimulationError(f"WorldConfig.posture_overrides entries must be (joint, rad), "
                                       f"got {entry!r}")
-            _require("WorldConfig", f"posture_overrides[{entry[0]}]", entry[1], -2 * math.pi,
-                      2 * math.pi, "rad")
+            require("WorldConfig", f"posture_overrides[{entry[0]}]", entry[1], POSTURE_OVERRIDE)
 
     @property
     def time_step(self) -> float:
         """Seconds per physics step."""
         return 1.0 / self.physics_rate
+
+

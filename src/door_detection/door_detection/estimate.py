@@ -7,11 +7,13 @@ metres), the frame the depth image is registered in.  The node transforms the po
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 from enum import Enum
 
 import numpy as np
 
+from door_contract.ranges import FieldRange, check_fields
 from door_contract.vocabulary import DetectionMode, Side
 from door_detection.errors import DetectionError
 
@@ -45,6 +47,9 @@ class DetectionOutcome(Enum):
     NO_CONSENSUS = "no_consensus"
     """Voter: no majority of the last N estimates agree."""
 
+
+_ESTIMATE_RANGES = {"confidence": FieldRange(0.0, 1.0, ""), "frames_voted": FieldRange(1, math.inf, "frames")}
+"""The interval of :class:`DetectedDoor`'s scalar fields."""
 
 @dataclass(frozen=True)
 class DetectedDoor:
@@ -94,10 +99,7 @@ class DetectedDoor:
         if not np.all(np.isfinite(up)) or np.linalg.norm(up) < 1e-9:
             raise DetectionError("up must be a finite non-zero vector")
         object.__setattr__(self, "up", _frozen_array(up / np.linalg.norm(up), (3,), "up"))
-        if not 0.0 <= self.confidence <= 1.0:
-            raise DetectionError(f"confidence must be in [0, 1], got {self.confidence}")
-        if self.frames_voted < 1:
-            raise DetectionError(f"frames_voted must be >= 1, got {self.frames_voted}")
+        check_fields(self, _ESTIMATE_RANGES, DetectionError, integers=("frames_voted",))
 
     def transformed(self, transform: FloatArray) -> DetectedDoor:
         """The same estimate in another frame: ``transform`` (4×4) maps optical-frame

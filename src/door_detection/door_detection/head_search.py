@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from door_contract.converters.trajectory import JointPath
+from door_contract.ranges import FieldRange, check_fields
 from door_detection.errors import DetectionError
 from door_detection.neck import neck_of
 from door_detection.view_search import (
@@ -72,12 +73,15 @@ class HeadSearchOptions:
     """Fraction of the neck joints' speed limits a move uses, (0, 1]."""
 
     def __post_init__(self) -> None:
-        if not 0.0 < self.settle_tolerance <= 0.5:
-            raise DetectionError(f"settle_tolerance = {self.settle_tolerance!r} rad must be in (0, 0.5]")
-        if isinstance(self.max_settle_frames, bool) or not 1 <= self.max_settle_frames <= 100:
-            raise DetectionError(f"max_settle_frames = {self.max_settle_frames!r} must be an integer in [1, 100]")
-        if not 0.0 < self.speed_scale <= 1.0:
-            raise DetectionError(f"speed_scale = {self.speed_scale!r} must be in (0, 1]")
+        check_fields(self, _HEAD_SEARCH_RANGES, DetectionError, integers=("max_settle_frames",))
+
+
+_HEAD_SEARCH_RANGES = {
+    "settle_tolerance": FieldRange(0.0, 0.5, "rad", low_open=True),
+    "max_settle_frames": FieldRange(1, 100, "frames"),
+    "speed_scale": FieldRange(0.0, 1.0, "", low_open=True),
+}
+"""The interval of every numeric :class:`HeadSearchOptions` field."""
 
 
 def home_view(neck: Neck, joints: Mapping[str, float]) -> View:

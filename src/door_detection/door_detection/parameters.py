@@ -1,12 +1,14 @@
 """Parameters of the door detector (defaults mirrored in params/door_detector.yaml).
 
-Parameters that are :class:`~door_detection.options.DetectionOptions` fields take their ranges
-from it (:func:`~door_detection.options.option_range`).
+Parameters that are :class:`~door_detection.options.DetectionOptions` or
+:class:`~door_detection.view_search.ViewSearchOptions` fields take their ranges from them
+(their ``option_range``).
 """
 
 from door_contract.parameters import ParameterSpec
 from door_contract.ranges import FieldRange
 from door_detection.options import option_range
+from door_detection.view_search import option_range as view_range
 
 NODE_NAME = "door_detector"
 
@@ -33,5 +35,5 @@ DETECTOR_PARAMETERS = (
                   "camera info and camera pose", FieldRange(0.0, 1.0, "s")),
     ParameterSpec("head_search", True, "while no door is confirmed, ask to pan and tilt the head "
                   "(/door_detector/look; door_detection.head_search)"),
-    ParameterSpec("head_search_max_pan", 1.2, "largest pan of the head search", FieldRange(0.0, 3.14, "rad")),
+    ParameterSpec("head_search_max_pan", 1.2, "largest pan of the head search", view_range("max_pan")),
 )

@@ -26,6 +26,7 @@ import math
 from dataclasses import dataclass
 from enum import Enum
 
+from door_contract.ranges import FieldRange, check_fields, check_in_range
 from door_detection.errors import DetectionError
 
 
@@ -120,18 +121,26 @@ class ViewSearchOptions:
     """Body turns tried each way (left first), [0, 4]."""
 
     def __post_init__(self) -> None:
-        checks = (("empty_frames_per_view", self.empty_frames_per_view, 1, 100),
-                  ("frames_per_view", self.frames_per_view, 1, 100), ("max_body_turns", self.max_body_turns, 0, 4))
-        for name, value, low, high in checks:
-            if isinstance(value, bool) or not isinstance(value, int) or not low <= value <= high:
-                raise DetectionError(f"{name} = {value!r} must be an integer in [{low}, {high}]")
-        angles = (("pan_step", self.pan_step, 1e-3, math.pi), ("max_pan", self.max_pan, 0.0, math.pi),
-                  ("body_turn_step", self.body_turn_step, 1e-3, math.pi))
-        for name, angle, lowest, highest in angles:
-            if not lowest <= angle <= highest:
-                raise DetectionError(f"{name} = {angle!r} rad must be in [{lowest:g}, {highest:.4g}]")
-        if not all(math.isfinite(t) and abs(t) <= math.pi / 2 for t in self.tilt_offsets):
-            raise DetectionError(f"tilt_offsets {self.tilt_offsets!r} must be finite, within ±π/2 rad")
+        check_fields(self, _VIEW_SEARCH_RANGES, DetectionError, integers=_VIEW_SEARCH_COUNTS)
+        for offset in self.tilt_offsets:
+            check_in_range("tilt_offsets", offset, TILT_OFFSET_RANGE, DetectionError)
+
+
+_VIEW_SEARCH_RANGES = {
+    "empty_frames_per_view": FieldRange(1, 100, "frames"), "frames_per_view": FieldRange(1, 100, "frames"),
+    "max_body_turns": FieldRange(0, 4, "turns"), "pan_step": FieldRange(1e-3, math.pi, "rad"),
+    "max_pan": FieldRange(0.0, math.pi, "rad"), "body_turn_step": FieldRange(1e-3, math.pi, "rad"),
+}
+"""The interval of every numeric :class:`ViewSearchOptions` field."""
+_VIEW_SEARCH_COUNTS = ("empty_frames_per_view", "frames_per_view", "max_body_turns")
+TILT_OFFSET_RANGE = FieldRange(-math.pi / 2, math.pi / 2, "rad")
+"""Each of :attr:`ViewSearchOptions.tilt_offsets`."""
+
+
+def option_range(name: str) -> FieldRange:
+    """The allowed interval of :class:`ViewSearchOptions` field ``name``: what a node parameter
+    configuring that option takes as its range."""
+    return _VIEW_SEARCH_RANGES[name]
 
 
 def pan_step_for(horizontal_fov: float, door_span: float) -> float:

@@ -57,7 +57,7 @@ from door_trajopt.evaluation import (
 )
 from door_trajopt.problem import FloatArray, TrajectoryProblem
 from door_trajopt.result import OptimizationResult
-from door_trajopt.validation import require_in_range, require_int_at_least
+from door_trajopt.validation import FieldRange, at_least, check_ranges
 
 IntArray = npt.NDArray[np.int64]
 REGULARISATIONS = (0.0, 1e-12, 1e-9, 1e-6)
@@ -91,16 +91,19 @@ class ChompOptions:
     second_order_correction: bool = True
 
     def __post_init__(self) -> None:
-        owner = type(self).__name__
-        require_in_range(owner, "step_size", self.step_size, 0.0, 1.0, low_open=True)
-        require_int_at_least(owner, "max_iterations", self.max_iterations, 1)
-        require_in_range(
-            owner, "constraint_tolerance", self.constraint_tolerance, 0.0, 1.0, low_open=True
-        )
-        require_in_range(owner, "cost_tolerance", self.cost_tolerance, 0.0, 1.0, high_open=True)
-        require_int_at_least(owner, "max_backtracks", self.max_backtracks, 0)
-        require_int_at_least(owner, "active_set_iterations", self.active_set_iterations, 1)
-        require_in_range(owner, "armijo", self.armijo, 0.0, 0.5, low_open=True, high_open=True)
+        check_ranges(self, _CHOMP_RANGES, integers=("max_iterations", "max_backtracks", "active_set_iterations"))
+
+
+_CHOMP_RANGES = {
+    "step_size": FieldRange(0.0, 1.0, "", low_open=True),
+    "max_iterations": at_least(1),
+    "constraint_tolerance": FieldRange(0.0, 1.0, "", low_open=True),
+    "cost_tolerance": FieldRange(0.0, 1.0, "", high_open=True),
+    "max_backtracks": at_least(0),
+    "active_set_iterations": at_least(1),
+    "armijo": FieldRange(0.0, 0.5, "", low_open=True, high_open=True),
+}
+"""The interval of every numeric :class:`ChompOptions` field."""
 
 
 @dataclass(frozen=True)

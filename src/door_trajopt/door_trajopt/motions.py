@@ -24,6 +24,7 @@ from typing import Protocol
 
 import numpy as np
 
+from door_contract.ranges import FieldRange, check_in_range
 from door_contract.vocabulary import Motion
 from door_robot.profile import Side
 from door_trajopt.chain import ArmChain
@@ -38,14 +39,16 @@ from door_trajopt.problem import (
     TrajectoryProblem,
     TrajoptError,
 )
-from door_trajopt.validation import require_in_range
+from door_trajopt.validation import check_ranges
 from door_trajopt.waypoint_constraints import WaypointFunction, WaypointValue, fixed_dof, waypoint_constraint
 
 FULL_MASK = np.ones(6)
 POSITION_MASK = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
 ROTATION_MASK = np.array([0.0, 0.0, 0.0, 1.0, 1.0, 1.0])
-HINGE_LIMITS = (0.0, 1.75)  # rad, door stop
-HANDLE_LIMITS = (0.0, 1.0)  # rad, handle stop
+HINGE_RANGE = FieldRange(0.0, 1.75, "rad")
+"""The hinge angle θ between closed and the door stop."""
+HANDLE_RANGE = FieldRange(0.0, 1.0, "rad")
+"""The handle angle φ between rest and the handle stop."""
 
 
 class DoorStateOutOfRange(TrajoptError):
@@ -53,16 +56,14 @@ class DoorStateOutOfRange(TrajoptError):
 
 
 def check_start_door(start_door: tuple[float, float]) -> None:
-    """Raise :class:`DoorStateOutOfRange` unless θ ∈ HINGE_LIMITS and φ ∈ HANDLE_LIMITS.
+    """Raise :class:`DoorStateOutOfRange` unless θ ∈ HINGE_RANGE and φ ∈ HANDLE_RANGE.
 
     Outside them the problem is unsolvable, and not cheaply so: a turn_handle at
     θ = 1e6 rad put the grasp pose anywhere on the circle, every IK and every initial
     guess ran to its budget, and the optimiser was blocked for 80 s.
     """
-    for name, value, (low, high) in (("hinge angle", start_door[0], HINGE_LIMITS),
-                                     ("handle angle", start_door[1], HANDLE_LIMITS)):
-        if not (np.isfinite(value) and low <= value <= high):
-            raise DoorStateOutOfRange(f"door {name} {value!r} rad is outside the door's range [{low:g}, {high:g}]")
+    check_in_range("door hinge angle", float(start_door[0]), HINGE_RANGE, DoorStateOutOfRange)
+    check_in_range("door handle angle", float(start_door[1]), HANDLE_RANGE, DoorStateOutOfRange)
 
 
 @dataclass(frozen=True)
@@ -95,16 +96,28 @@ class MotionOptions:
     # sideways robot's released arm on a pushed leaf (at 0.10 the elbow struck the post in 4 of 8 doors)
 
     def __post_init__(self) -> None:
-        checks = {"waypoints": (4, 200), "handle_turn": (0.1, HANDLE_LIMITS[1]),
-                  "push_angle": (0.05, HINGE_LIMITS[1]), "pull_angle": (0.05, HINGE_LIMITS[1]),
-                  "pregrasp_offset": (0.0, 0.2), "grasp_clearance": (0.0, 0.02), "com_margin": (0.0, 0.1), "wall_clearance": (0.0, 0.3),
-                  "lever_standoff": (0.0, 0.2), "block_inset": (0.0, 0.5), "block_entry": (0.0, 0.5),
-                  "block_standoff": (0.0, 0.5), "posture_weight": (0.0, 100.0),
-                  "post_inset": (0.0, 0.2), "forearm_clearance": (0.0, 0.3), "head_clearance": (0.0, 0.5),
-                  "door_stop_lateral": (0.0, 0.3), "release_retreat": (0.0, 0.3),
-                  "tuck_duration": (0.0, 10.0), "doorway_arm_margin": (0.0, 0.5)}
-        for name, (low, high) in checks.items():
-            require_in_range("MotionOptions", name, getattr(self, name), low, high)
+        check_ranges(self, _MOTION_RANGES)
+
+
+_MOTION_RANGES: dict[str, FieldRange] = {
+    "waypoints": FieldRange(4, 200, "waypoints"),
+    "handle_turn": replace(HANDLE_RANGE, low=0.1), "push_angle": replace(HINGE_RANGE, low=0.05),
+    "pull_angle": replace(HINGE_RANGE, low=0.05),
+    "pregrasp_offset": FieldRange(0.0, 0.2, "m"), "grasp_clearance": FieldRange(0.0, 0.02, "m"),
+    "com_margin": FieldRange(0.0, 0.1, "m"), "wall_clearance": FieldRange(0.0, 0.3, "m"),
+    "lever_standoff": FieldRange(0.0, 0.2, "m"), "block_inset": FieldRange(0.0, 0.5, "m"),
+    "block_entry": FieldRange(0.0, 0.5, "m"), "block_standoff": FieldRange(0.0, 0.5, "m"),
+    "posture_weight": FieldRange(0.0, 100.0, ""), "post_inset": FieldRange(0.0, 0.2, "m"),
+    "forearm_clearance": FieldRange(0.0, 0.3, "m"), "head_clearance": FieldRange(0.0, 0.5, "m"),
+    "door_stop_lateral": FieldRange(0.0, 0.3, "m"), "release_retreat": FieldRange(0.0, 0.3, "m"),
+    "tuck_duration": FieldRange(0.0, 10.0, "s"), "doorway_arm_margin": FieldRange(0.0, 0.5, "m"),
+}
+
+
+def option_range(name: str) -> FieldRange:
+    """The allowed interval of :class:`MotionOptions` field ``name``: what a node parameter
+    configuring that option takes as its range."""
+    return _MOTION_RANGES[name]
 
 
 @dataclass(frozen=True)
@@ -260,8 +273,8 @@ def _pull_head_clearance(setup: MotionSetup, options: MotionOptions, m: int, n: 
 def _limits(setup: MotionSetup, door_moves: tuple[bool, bool], start_chain: np.ndarray,
             pinned: tuple[str, ...] = ()) -> JointLimits:
     chain = setup.chain
-    lower = [*chain.lower, *(HINGE_LIMITS[0], HANDLE_LIMITS[0])]
-    upper = [*chain.upper, *(HINGE_LIMITS[1], HANDLE_LIMITS[1])]
+    lower = [*chain.lower, HINGE_RANGE.low, HANDLE_RANGE.low]
+    upper = [*chain.upper, HINGE_RANGE.high, HANDLE_RANGE.high]
     for index, name in enumerate(chain.joint_names):
         if name in pinned:  # e.g. the torso while the other hand holds the door
             lower[index] = upper[index] = float(start_chain[index])
@@ -681,7 +694,7 @@ def start_door_for(motion: Motion, door_angle: float, options: MotionOptions) ->
     measured θ within :data:`STOP_TOLERANCE` beyond a stop is on the stop; one farther out is
     kept (and refused by :func:`check_start_door`)."""
     turned = motion in (Motion.PUSH_DOOR, Motion.PULL_DOOR)
-    low, high = HINGE_LIMITS
+    low, high = HINGE_RANGE.low, HINGE_RANGE.high
     if low - STOP_TOLERANCE <= door_angle <= high + STOP_TOLERANCE:
         door_angle = min(max(door_angle, low), high)
     return (door_angle, options.handle_turn if turned else 0.0)

@@ -62,7 +62,7 @@ from door_trajopt.lagrangian_curvature import BlockCurvature, block_pattern
 from door_trajopt.problem import FloatArray, TrajectoryProblem, TrajoptError
 from door_trajopt.qp_layout import QpLayout
 from door_trajopt.result import OptimizationResult
-from door_trajopt.validation import require_in_range, require_int_at_least
+from door_trajopt.validation import FieldRange, at_least, check_ranges
 
 SOLVED_STATUSES = (
     osqp.SolverStatus.OSQP_SOLVED,
@@ -151,62 +151,36 @@ class SqpOptions:
     initial_curvature: float = 1e-2
 
     def __post_init__(self) -> None:
-        owner = type(self).__name__
         if not isinstance(self.constraint_handling, ConstraintHandling):
-            raise_field(owner, "constraint_handling", "a ConstraintHandling member")
-        require_int_at_least(owner, "max_iterations", self.max_iterations, 1)
-        require_in_range(
-            owner, "constraint_tolerance", self.constraint_tolerance, 0.0, 1.0, low_open=True
-        )
-        require_in_range(owner, "cost_tolerance", self.cost_tolerance, 0.0, 1.0, high_open=True)
-        self._check_trust_region(owner)
-        require_in_range(
-            owner,
-            "acceptance_ratio",
-            self.acceptance_ratio,
-            0.0,
-            0.5,
-            low_open=True,
-            high_open=True,
-        )
-        self._check_penalty(owner)
-        require_in_range(owner, "slack_curvature", self.slack_curvature, 0.0, 1e6)
-        require_in_range(owner, "qp_tolerance", self.qp_tolerance, 1e-14, 1e-2)
-        require_in_range(owner, "qp_refine_tolerance", self.qp_refine_tolerance, 1e-14, 1e-2)
-        require_int_at_least(owner, "qp_max_iterations", self.qp_max_iterations, 25)
-        require_in_range(owner, "initial_curvature", self.initial_curvature, 0.0, 1e3, low_open=True)
+            raise_field(type(self).__name__, "constraint_handling", "a ConstraintHandling member")
+        check_ranges(self, self._ranges(), integers=("max_iterations", "qp_max_iterations"))
 
-    def _check_trust_region(self, owner: str) -> None:
-        require_in_range(
-            owner, "initial_trust_radius", self.initial_trust_radius, 0.0, 100.0, low_open=True
-        )
-        require_in_range(
-            owner,
-            "min_trust_radius",
-            self.min_trust_radius,
-            0.0,
-            self.initial_trust_radius,
-            low_open=True,
-        )
-        require_in_range(
-            owner, "max_trust_radius", self.max_trust_radius, self.initial_trust_radius, 1000.0
-        )
-        require_in_range(
-            owner, "trust_shrink", self.trust_shrink, 0.0, 1.0, low_open=True, high_open=True
-        )
-        require_in_range(owner, "trust_expand", self.trust_expand, 1.0, 10.0)
-
-    def _check_penalty(self, owner: str) -> None:
-        if self.initial_penalty is not None:
-            require_in_range(
-                owner, "initial_penalty", self.initial_penalty, 0.0, 1e12, low_open=True
-            )
-        require_in_range(owner, "penalty_margin", self.penalty_margin, 1.0, 100.0)
-        require_in_range(owner, "min_penalty", self.min_penalty, 0.0, 1.0, low_open=True)
-        require_in_range(
-            owner, "penalty_increase", self.penalty_increase, 1.0, 1000.0, low_open=True
-        )
-        require_in_range(owner, "max_penalty", self.max_penalty, 1.0, 1e15)
+    def _ranges(self) -> dict[str, FieldRange]:
+        """Every numeric field's interval, in the order checked (the trust radii's depend on
+        ``initial_trust_radius``; ``initial_penalty`` has one only when given)."""
+        r = FieldRange
+        penalty = {} if self.initial_penalty is None else {"initial_penalty": r(0.0, 1e12, "", low_open=True)}
+        return {
+            "max_iterations": at_least(1),
+            "constraint_tolerance": r(0.0, 1.0, "", low_open=True),
+            "cost_tolerance": r(0.0, 1.0, "", high_open=True),
+            "initial_trust_radius": r(0.0, 100.0, "", low_open=True),
+            "min_trust_radius": r(0.0, self.initial_trust_radius, "", low_open=True),
+            "max_trust_radius": r(self.initial_trust_radius, 1000.0, ""),
+            "trust_shrink": r(0.0, 1.0, "", low_open=True, high_open=True),
+            "trust_expand": r(1.0, 10.0, ""),
+            "acceptance_ratio": r(0.0, 0.5, "", low_open=True, high_open=True),
+            **penalty,
+            "penalty_margin": r(1.0, 100.0, ""),
+            "min_penalty": r(0.0, 1.0, "", low_open=True),
+            "penalty_increase": r(1.0, 1000.0, "", low_open=True),
+            "max_penalty": r(1.0, 1e15, ""),
+            "slack_curvature": r(0.0, 1e6, ""),
+            "qp_tolerance": r(1e-14, 1e-2, ""),
+            "qp_refine_tolerance": r(1e-14, 1e-2, ""),
+            "qp_max_iterations": at_least(25),
+            "initial_curvature": r(0.0, 1e3, "", low_open=True),
+        }
 
 
 def raise_field(owner: str, field_name: str, expected: str) -> None:

@@ -95,9 +95,10 @@ class FootstepPlannerOptions:
                 if not isinstance(self.snap_to_goal, bool):
                     raise FootstepPlannerError(f"snap_to_goal must be a bool, got {self.snap_to_goal!r}")
                 continue
-            _check_field(option.name, getattr(self, option.name), _RANGES[option.name])
-        _check_field("min_foot_separation", self.min_foot_separation,
-                     FieldRange(self.foot_width, self.nominal_foot_separation, "m"))
+            check_range(option.name, getattr(self, option.name), _RANGES[option.name],
+                        integer=option.name in _INTEGERS)
+        check_range("min_foot_separation", self.min_foot_separation,
+                    FieldRange(self.foot_width, self.nominal_foot_separation, "m"))
 
     @property
     def body_reach_depth(self) -> float:
@@ -140,6 +141,8 @@ _RANGES: dict[str, FieldRange] = {
     "yaw_resolution": FieldRange(0.0, 0.5, "rad", low_open=True),
     "search_margin": FieldRange(0.0, 50.0, "m", low_open=True),
 }
+_INTEGERS = frozenset({"max_expansions"})
+"""The options that must be ``int``."""
 
 
 def option_range(name: str) -> FieldRange:
@@ -147,9 +150,3 @@ def option_range(name: str) -> FieldRange:
     on other fields)."""
     return _RANGES[name]
 
-
-def _check_field(name: str, value: object, allowed: FieldRange) -> None:
-    """Raise :class:`FootstepPlannerError` naming ``name`` unless ``value`` is a number in range."""
-    if name == "max_expansions" and isinstance(value, float):
-        raise FootstepPlannerError(f"{name} must be an integer, got {value!r}", field=name)
-    check_range(name, value, allowed)

@@ -9,10 +9,11 @@ from footstep_planner.errors import FootstepPlannerError
 __all__ = ["FieldRange", "check_range"]
 
 
-def check_range(name: str, value: object, allowed: FieldRange, owner: str = "") -> None:
-    """Raise unless ``value`` is a finite real number (not a bool) within ``allowed``.
+def check_range(name: str, value: object, allowed: FieldRange, owner: str = "", integer: bool = False) -> None:
+    """Raise unless ``value`` is a finite real number (not a bool; an ``int`` when ``integer``)
+    within ``allowed``.
 
     ``owner`` prefixes the message ("door angle = ...").
     """
     check_in_range(f"{owner} {name}".strip(), value, allowed,
-                   lambda message: FootstepPlannerError(message, field=name))
+                   lambda message: FootstepPlannerError(message, field=name), integer)
