@@ -30,16 +30,26 @@ def checkout_of_this_module() -> Path | None:
     return find_checkout(Path(__file__))
 
 
+def checkout_of_these_sources() -> Path | None:
+    """The checkout when this module runs from its sources (``src/door_robot/door_robot``), None
+    when it runs installed (even from the colcon install inside a checkout: an installed
+    package reads its own share)."""
+    checkout = checkout_of_this_module()
+    if checkout is None or not Path(__file__).resolve().is_relative_to(checkout / "src"):
+        return None
+    return checkout
+
+
 PROFILES_SHARE = "profiles"
 """The folder of door_robot's share directory the robot profiles are installed in."""
 
 
 def params_dir() -> Path:
-    """The folder of the robot profiles: $DOOR_PARAMS_DIR, else the checkout's params/, else
+    """The folder of the robot profiles: $DOOR_PARAMS_DIR, else the checkout's params/ (running from the sources), else
     ``share/door_robot/profiles`` (installed; found through the ament index)."""
     if "DOOR_PARAMS_DIR" in os.environ:
         return Path(os.environ["DOOR_PARAMS_DIR"])
-    checkout = checkout_of_this_module()
+    checkout = checkout_of_these_sources()
     if checkout is not None:
         return checkout / "params"
     from ament_index_python.packages import get_package_share_directory
