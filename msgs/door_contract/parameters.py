@@ -22,7 +22,7 @@ import yaml
 from door_contract.errors import ParameterRangeError
 from door_contract.ranges import FieldRange, check_in_range
 
-ParameterValue = bool | int | float | str | tuple
+ParameterValue = bool | int | float | str | tuple[Any, ...]
 
 
 @dataclass(frozen=True)
@@ -66,18 +66,19 @@ class ParameterSpec:
         is checked by :func:`~door_contract.ranges.check_in_range` against its range."""
         if self.is_number:
             return self._validate_number(value)
-        value = self._coerce(value)
-        if self.choices and value not in self.choices:
-            raise self._error(value)
-        return value
+        coerced = self._coerce(value)
+        if self.choices and coerced not in self.choices:
+            raise self._error(coerced)
+        return coerced
 
     def _validate_number(self, value: Any) -> int | float:
         integer = isinstance(self.default, int)
+        number: int | float = value
         if not integer and isinstance(value, int) and not isinstance(value, bool):
-            value = float(value)
-        check_in_range(f"parameter '{self.name}'", value, self.numeric_range(), ParameterRangeError,
+            number = float(value)
+        check_in_range(f"parameter '{self.name}'", number, self.numeric_range(), ParameterRangeError,
                        integer=integer)
-        return value  # checked: an int, or a finite float
+        return number  # checked: an int, or a finite float
 
     def _coerce(self, value: Any) -> ParameterValue:
         expected = type(self.default)

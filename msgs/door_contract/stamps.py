@@ -13,12 +13,14 @@ def to_time_msg(seconds: Stamp) -> Time:
 
 
 def from_time_msg(stamp: Time) -> Stamp:
-    return stamp.sec + stamp.nanosec * 1e-9
+    seconds: Stamp = stamp.sec + stamp.nanosec * 1e-9
+    return seconds
 
 
 def stamp_ns(stamp: Time) -> int:
     """A stamp as integer nanoseconds: how an executed message and its outcome are matched."""
-    return stamp.sec * 1_000_000_000 + stamp.nanosec
+    nanoseconds: int = stamp.sec * 1_000_000_000 + stamp.nanosec
+    return nanoseconds
 
 
 class UniqueStamps:

@@ -54,7 +54,8 @@ class ServiceSpec:
 
 def interface_class(type_name: str) -> type:
     package, kind, name = type_name.split("/")
-    return getattr(importlib.import_module(f"{package}.{kind}"), name)
+    interface: type = getattr(importlib.import_module(f"{package}.{kind}"), name)
+    return interface
 
 
 class Topics:

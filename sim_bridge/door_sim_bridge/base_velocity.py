@@ -20,4 +20,5 @@ class BaseVelocity:
         previous, self._previous = self._previous, (now, np.array(base[:3, 3], dtype=float))
         if previous is None or now <= previous[0]:
             return None
-        return (self._previous[1] - previous[1]) / (now - previous[0])
+        velocity: np.ndarray = (self._previous[1] - previous[1]) / (now - previous[0])
+        return velocity

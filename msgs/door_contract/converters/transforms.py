@@ -58,7 +58,7 @@ def msg_to_frame_transform(msg: TransformStamped) -> FrameTransform:
     return FrameTransform(msg.header.frame_id, msg.child_frame_id, transform_to_matrix(msg.transform))
 
 
-def _checked_stack(frames: list[FrameTransform]) -> tuple[np.ndarray, list]:
+def _checked_stack(frames: list[FrameTransform]) -> tuple[np.ndarray, list[list[float]]]:
     """The frames' matrices (N, 4, 4), checked finite and 4×4, and their (x, y, z, w) quaternions."""
     matrices = require_finite(np.array([frame.matrix for frame in frames], dtype=float), "transforms")
     if frames and matrices.shape[1:] != (4, 4):
@@ -66,7 +66,7 @@ def _checked_stack(frames: list[FrameTransform]) -> tuple[np.ndarray, list]:
     return matrices, (Rotation.from_matrix(matrices[:, :3, :3]).as_quat().tolist() if frames else [])
 
 
-def _write(msg: TransformStamped, time_msg: Any, matrix: np.ndarray, quaternion: list) -> None:
+def _write(msg: TransformStamped, time_msg: Any, matrix: np.ndarray, quaternion: list[float]) -> None:
     """Stamp and numbers of one TransformStamped, set in place (frames unchanged)."""
     msg.header.stamp = time_msg
     translation, rotation = msg.transform.translation, msg.transform.rotation

@@ -30,8 +30,9 @@ from enum import Enum
 import numpy as np
 import placo
 
-from door_contract.converters.footsteps import Foot, FootPlacement
-from door_robot.profile import RobotProfile, Side
+from door_contract.converters.footsteps import FootPlacement
+from door_contract.vocabulary import Foot, Side
+from door_robot.profile import RobotProfile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.walking.gait import GaitOptions, footstep_sequence, placo_parameters
 from door_sim_bridge.walking.model import PLACO_TRUNK_FRAME, joint_split, load_placo_robot
@@ -70,7 +71,7 @@ def yaw_rotation(yaw: float) -> np.ndarray:
     return rotation
 
 
-def supports_from(items: list) -> placo.Supports:
+def supports_from(items: list[placo.Support]) -> placo.Supports:
     supports = placo.Supports()
     for item in items:
         supports.append(item)

@@ -18,7 +18,8 @@ from dataclasses import dataclass
 import numpy as np
 import placo
 
-from door_contract.converters.footsteps import Foot, FootPlacement
+from door_contract.converters.footsteps import FootPlacement
+from door_contract.vocabulary import Foot
 from door_sim_bridge.validation import check_ranges
 
 SIDE_OF_FOOT = {Foot.LEFT: placo.HumanoidRobot_Side.left, Foot.RIGHT: placo.HumanoidRobot_Side.right}

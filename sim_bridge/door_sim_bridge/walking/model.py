@@ -22,7 +22,8 @@ from pathlib import Path
 
 import placo
 
-from door_robot.profile import RobotProfile, Side
+from door_contract.vocabulary import Side
+from door_robot.profile import RobotProfile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.urdf_elements import joint_link, required_attribute, required_child
 

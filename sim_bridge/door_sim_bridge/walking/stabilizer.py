@@ -88,7 +88,8 @@ def feed_forward_offset(wrench: ContactWrench, reference: np.ndarray, weight: fl
     """Δc_ff (xy, m) of the module docstring; ``weight`` = m g (N)."""
     force, point = wrench.force, wrench.point
     moment_arm = point[2] * force[:2] - (point[:2] - reference[:2]) * force[2]
-    return -moment_arm / weight
+    offset: np.ndarray = -moment_arm / weight
+    return offset
 
 
 def clipped(wrench: ContactWrench, limit: float) -> ContactWrench:
@@ -101,7 +102,8 @@ def clipped(wrench: ContactWrench, limit: float) -> ContactWrench:
 
 def beyond(value: np.ndarray, band: float) -> np.ndarray:
     """The part of each component of ``value`` outside [−band, band]."""
-    return value - np.clip(value, -band, band)
+    excess: np.ndarray = value - np.clip(value, -band, band)
+    return excess
 
 
 class Stabilizer:

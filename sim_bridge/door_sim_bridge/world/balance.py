@@ -12,8 +12,8 @@ from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 
-from door_contract.converters.footsteps import Foot, FootPlacement
-from door_robot.profile import Side
+from door_contract.converters.footsteps import FootPlacement
+from door_contract.vocabulary import Foot, Side
 from door_sim_bridge.walking.controller import BalanceMode, Measurement, WalkingController
 from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import WorldConfig

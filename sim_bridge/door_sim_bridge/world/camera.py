@@ -127,7 +127,8 @@ class HeadCamera:
 
     def pose(self) -> np.ndarray:
         """4×4 optical frame of the camera in odom."""
-        return self._robot.link_pose(self._robot.profile.head_camera_frame) @ self._link_to_optical
+        pose: np.ndarray = self._robot.link_pose(self._robot.profile.head_camera_frame) @ self._link_to_optical
+        return pose
 
     def render(self, time: float) -> CameraFrame:
         """Render colour and depth from the current camera pose (adds noise if configured)."""
@@ -150,7 +151,8 @@ class HeadCamera:
             return depth
         noisy = depth + self._noise.standard_normal(depth.shape) * k * depth * depth
         noisy[noisy <= self.config.near] = np.nan
-        return noisy.astype(np.float32)
+        noisy_depth: np.ndarray = noisy.astype(np.float32)
+        return noisy_depth
 
     def _colour_noise(self, rgb: np.ndarray) -> np.ndarray:
         sigma = self.config.colour_noise_sigma

@@ -292,8 +292,9 @@ class SimDoor:
         with tempfile.TemporaryDirectory(prefix="door_sim_") as folder:
             path = Path(folder) / "door_scene.urdf"
             path.write_text(door_urdf(config))
-            return client.loadURDF(str(path), useFixedBase=True,
-                                   flags=pybullet.URDF_USE_INERTIA_FROM_FILE)
+            body: int = client.loadURDF(str(path), useFixedBase=True,
+                                        flags=pybullet.URDF_USE_INERTIA_FROM_FILE)
+            return body
 
     def _set_friction(self) -> None:
         """Coulomb friction as velocity motors with target 0 and the friction as force limit."""
@@ -357,7 +358,8 @@ class SimDoor:
 
     def handle_grasp_pose(self) -> np.ndarray:
         """4×4 ground-truth grasp frame on the lever (x towards the robot side, z up)."""
-        return self.link_pose(DoorPart.HANDLE) @ self.geometry.grasp_in_handle
+        pose: np.ndarray = self.link_pose(DoorPart.HANDLE) @ self.geometry.grasp_in_handle
+        return pose
 
     def ground_truth(self) -> DoorGroundTruth:
         leaf = self.link_pose(DoorPart.LEAF)

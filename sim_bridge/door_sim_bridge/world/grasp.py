@@ -125,7 +125,7 @@ class GraspController:
         parent_position, parent_orientation = position_quaternion(invert(hand_com) @ joint_frame)
         child_position, child_orientation = position_quaternion(invert(handle_com) @ joint_frame)
         kind = pybullet.JOINT_POINT2POINT if self._model is GraspModel.COMPLIANT else pybullet.JOINT_PRISMATIC
-        constraint = self._client.createConstraint(
+        constraint: int = self._client.createConstraint(
             self._robot.body, hand_link, self._door.body, handle_link, kind,
             [1.0, 0.0, 0.0], parent_position, child_position, parent_orientation, child_orientation)
         self._client.changeConstraint(constraint, maxForce=SOLVER_FORCE_MARGIN * self._break_force)

@@ -26,7 +26,7 @@ MIN_SUPPORT_FORCE = 1.0  # N of floor contact below which the robot is in the ai
 def make_floor(client: PhysicsClient, friction: float) -> int:
     """An infinite static plane z = 0 that collides (the scene's floor is visual only)."""
     shape = client.createCollisionShape(pybullet.GEOM_PLANE)
-    floor = client.createMultiBody(0.0, shape)
+    floor: int = client.createMultiBody(0.0, shape)
     client.changeDynamics(floor, -1, lateralFriction=friction)
     return floor
 
@@ -37,7 +37,8 @@ def centre_of_pressure(client: PhysicsClient, robot: int, floor: int) -> np.ndar
     total = sum(contact[9] for contact in contacts)
     if total < MIN_SUPPORT_FORCE:
         return None
-    return sum(contact[9] * np.array(contact[5][:2]) for contact in contacts) / total
+    centre: np.ndarray = sum(contact[9] * np.array(contact[5][:2]) for contact in contacts) / total
+    return centre
 
 
 def floor_links(client: PhysicsClient, robot: int, floor: int) -> set[int]:

@@ -99,11 +99,13 @@ class SimRobot:
     def _load(self, floating: bool) -> int:
         flags = pybullet.URDF_USE_INERTIA_FROM_FILE
         if not floating and not self.profile.extra_frames:  # the URDF as it is
-            return self._client.loadURDF(str(self.profile.urdf_path), useFixedBase=True, flags=flags)
+            body: int = self._client.loadURDF(str(self.profile.urdf_path), useFixedBase=True, flags=flags)
+            return body
         with tempfile.TemporaryDirectory(prefix="door_robot_") as folder:
             path = Path(folder) / f"{self.profile.name}_{'box_soles' if floating else 'frames'}.urdf"
             path.write_text(self.urdf_text)
-            return self._client.loadURDF(str(path), useFixedBase=not floating, flags=flags)
+            body = self._client.loadURDF(str(path), useFixedBase=not floating, flags=flags)
+            return body
 
     # ------------------------------------------------------------------ names
     def link_index(self, link: str) -> int:
@@ -193,7 +195,8 @@ class SimRobot:
         """
         index, mass = self._wrists[side]
         reaction = np.array(self._client.getJointState(self.body, index)[2][:3])
-        return -(self.link_com_pose(index)[:3, :3] @ reaction) + np.array([0.0, 0.0, mass * gravity])
+        force: np.ndarray = -(self.link_com_pose(index)[:3, :3] @ reaction) + np.array([0.0, 0.0, mass * gravity])
+        return force
 
     def go_limp(self, damping_fraction: float = 0.05) -> None:
         """Motors off but for a little damping (a fallen robot's joints give way)."""
@@ -213,7 +216,8 @@ class SimRobot:
     def base_pose(self) -> np.ndarray:
         """4×4 URDF base frame in the world."""
         position, orientation = self._client.getBasePositionAndOrientation(self.body)
-        return pose_matrix(position, orientation) @ invert(self._base_inertial)
+        pose: np.ndarray = pose_matrix(position, orientation) @ invert(self._base_inertial)
+        return pose
 
     def set_base_pose(self, pose: np.ndarray) -> None:
         """Teleport the base (URDF frame) to ``pose``; joint angles are unchanged (placing the
@@ -243,12 +247,14 @@ class SimRobot:
         PyBullet reports the axis in the child link's centre-of-mass frame, not its URDF frame.
         """
         axis = np.array(self._client.getJointInfo(self.body, index)[13], dtype=float)
-        return self.link_com_pose(index)[:3, :3] @ axis
+        axis_in_world: np.ndarray = self.link_com_pose(index)[:3, :3] @ axis
+        return axis_in_world
 
     def tcp_pose(self, side: Side) -> np.ndarray:
         """4×4 TCP in the world: the profile's TCP parent frame shifted by its grasp offset."""
         arm = self.profile.arm(side)
-        return self.link_pose(arm.tcp_parent_frame) @ translation(arm.grasp_offset)
+        pose: np.ndarray = self.link_pose(arm.tcp_parent_frame) @ translation(arm.grasp_offset)
+        return pose
 
     def hand_links(self, side: Side) -> set[int]:
         """The TCP parent link and everything below it (gripper, fingers)."""

@@ -362,7 +362,8 @@ class DoorWorld:
 
     def base_pose_for_feet(self, left: FootPlacement, right: FootPlacement) -> np.ndarray:
         """Base pose that puts the soles at ``left``/``right`` (midpoint, mean yaw, nominal height)."""
-        return stance_midpoint(left, right) @ self._stance_offset
+        pose: np.ndarray = stance_midpoint(left, right) @ self._stance_offset
+        return pose
 
     def body_extents(self, reach: float = 1.5) -> dict[str, float]:
         """How far (m) the robot's collision shapes reach from its base, in the base frame:

@@ -151,7 +151,8 @@ def _door_up(candidate: DoorCandidate) -> np.ndarray:
     """The door's vertical: the mean 3-D edge direction, oriented towards image up (−y)."""
     left, right = candidate.left_edge.direction, candidate.right_edge.direction
     mean = left + (right if float(left @ right) >= 0 else -right)
-    return -mean / np.linalg.norm(mean) if mean[1] > 0 else mean / np.linalg.norm(mean)
+    normal: np.ndarray = -mean / np.linalg.norm(mean) if mean[1] > 0 else mean / np.linalg.norm(mean)
+    return normal
 
 
 def _find_door_and_handle(frame: RgbdFrame, options: DetectionOptions, hinge_side: Side | None,

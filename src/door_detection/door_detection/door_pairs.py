@@ -182,7 +182,8 @@ def _sized_candidate(lines: VerticalLines, left: int, right: int, depth: np.ndar
 def _mean_direction(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     b = b if float(a @ b) >= 0 else -b
     mean = a + b
-    return mean / np.linalg.norm(mean)
+    direction: np.ndarray = mean / np.linalg.norm(mean)
+    return direction
 
 
 def merge_duplicates(candidates: list[DoorCandidate], distance: float) -> list[DoorCandidate]:

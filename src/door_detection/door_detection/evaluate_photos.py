@@ -158,7 +158,10 @@ def summarise(results: Sequence[_ImageResult]) -> PhotoReport:
     door_found = _fraction([any(iou(box, p.box) >= IOU_MATCH for p in r.proposals) for r, box in doors])
     top1 = _fraction([bool(r.proposals) and any(iou(r.proposals[0].box, box) >= IOU_MATCH
                                                  for box in r.image.of_class(DOOR)) for r in labelled])
-    handle_boxes = lambda r: [p.handle_box for p in r.proposals if p.handle_box is not None]  # noqa: E731
+
+    def handle_boxes(r: _ImageResult) -> list[Box]:
+        return [p.handle_box for p in r.proposals if p.handle_box is not None]
+
     handle_found = _fraction([any(iou(box, h) >= IOU_MATCH for h in handle_boxes(r)) for r, box in handles])
     centre_hit = _fraction([any(_contains(box, h) for h in handle_boxes(r)) for r, box in handles])
     return PhotoReport(len(results), len(doors), len(handles), len(no_doors), door_found, top1, handle_found,

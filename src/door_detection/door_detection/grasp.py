@@ -150,7 +150,8 @@ class _Columns:
         tallest = float(self.heights.max())
         if tallest < 1.6 * self.bar:
             return np.zeros(self.index.shape, dtype=bool)
-        return (self.heights >= 0.5 * (self.bar + tallest))[self.index]
+        mask: np.ndarray = (self.heights >= 0.5 * (self.bar + tallest))[self.index]
+        return mask
 
 
 def _column_heights(blob: _Blob) -> _Columns | None:

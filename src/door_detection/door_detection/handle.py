@@ -46,8 +46,9 @@ class ColourStats:
         (k = ``scale``, default ``handle_sigma_scale``)."""
         k = options.handle_sigma_scale if scale is None else scale
         tolerance = k * np.maximum(self.sigma, options.handle_min_sigma)
-        return np.all(np.abs(pixels.astype(np.float32) - self.mean.astype(np.float32))
-                      <= tolerance.astype(np.float32), axis=-1)
+        mask: np.ndarray = np.all(np.abs(pixels.astype(np.float32) - self.mean.astype(np.float32))
+                                  <= tolerance.astype(np.float32), axis=-1)
+        return mask
 
 
 @dataclass(frozen=True)
@@ -187,7 +188,11 @@ def _full_resolution(rgb: np.ndarray, small: HandleBlob, door: ColourStats, scal
     components of its (grown by 1/scale) bounding box that overlap its upscaled pixels."""
     height, width = rgb.shape[:2]
     pad = int(np.ceil(1.0 / scale)) + 1
-    to_full = lambda v, o: (v + 0.5) / scale - 0.5 + o  # noqa: E731
+
+    def to_full(v: np.ndarray, o: int) -> np.ndarray:
+        full: np.ndarray = (v + 0.5) / scale - 0.5 + o
+        return full
+
     cols, rows = to_full(small.cols, offset[0]), to_full(small.rows, offset[1])
     x0, x1 = max(int(cols.min()) - pad, 0), min(int(cols.max()) + pad + 1, width)
     y0, y1 = max(int(rows.min()) - pad, 0), min(int(rows.max()) + pad + 1, height)

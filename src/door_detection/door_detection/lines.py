@@ -32,19 +32,22 @@ class VerticalLines:
     def slopes(self) -> np.ndarray:
         """dx/dy of every line (n,)."""
         s = self.segments
-        return (s[:, 2] - s[:, 0]) / np.maximum(s[:, 3] - s[:, 1], 1e-9)
+        slopes: np.ndarray = (s[:, 2] - s[:, 0]) / np.maximum(s[:, 3] - s[:, 1], 1e-9)
+        return slopes
 
     @property
     def lengths(self) -> np.ndarray:
         s = self.segments
-        return np.hypot(s[:, 2] - s[:, 0], s[:, 3] - s[:, 1])
+        lengths: np.ndarray = np.hypot(s[:, 2] - s[:, 0], s[:, 3] - s[:, 1])
+        return lengths
 
     def x_at(self, rows: np.ndarray) -> np.ndarray:
         """x of every line at ``rows``; rows broadcast against (n,) (e.g. (n, k))."""
         s = self.segments
         rows = np.asarray(rows, dtype=float)
         extra = (slice(None),) + (None,) * max(rows.ndim - 1, 0)
-        return s[:, 0][extra] + self.slopes[extra] * (rows - s[:, 1][extra])
+        xs: np.ndarray = s[:, 0][extra] + self.slopes[extra] * (rows - s[:, 1][extra])
+        return xs
 
 
 def detect_vertical_lines(rgb: np.ndarray, options: DetectionOptions) -> VerticalLines:
@@ -83,7 +86,8 @@ def _top_first(segments: np.ndarray) -> np.ndarray:
 def _is_near_vertical(segments: np.ndarray, max_tilt_deg: float) -> np.ndarray:
     dx = np.abs(segments[:, 2] - segments[:, 0])
     dy = segments[:, 3] - segments[:, 1]
-    return dx <= math.tan(math.radians(max_tilt_deg)) * dy
+    upright: np.ndarray = dx <= math.tan(math.radians(max_tilt_deg)) * dy
+    return upright
 
 
 def merge_collinear(lines: VerticalLines, options: DetectionOptions) -> VerticalLines:
@@ -118,7 +122,8 @@ def merge_collinear(lines: VerticalLines, options: DetectionOptions) -> Vertical
 
 def _fit_group(members: np.ndarray, lengths: np.ndarray) -> np.ndarray:
     if len(members) == 1:
-        return members[0]
+        line: np.ndarray = members[0]
+        return line
     ys = np.concatenate([members[:, 1], members[:, 3]])
     xs = np.concatenate([members[:, 0], members[:, 2]])
     w = np.concatenate([lengths, lengths])

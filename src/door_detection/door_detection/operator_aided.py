@@ -108,7 +108,8 @@ def _validate_up(up: np.ndarray | None) -> np.ndarray:
     vector = np.asarray(up, dtype=float)
     if vector.shape != (3,) or not np.all(np.isfinite(vector)) or np.linalg.norm(vector) < 1e-9:
         raise InputError(f"up must be a finite non-zero 3-vector, got {up!r}")
-    return vector / np.linalg.norm(vector)
+    unit: np.ndarray = vector / np.linalg.norm(vector)
+    return unit
 
 
 def _seed_mask(points: np.ndarray, shape: tuple[int, int], dilation: int) -> np.ndarray:

@@ -21,7 +21,8 @@ class Plane:
 
     def signed_distance(self, points: np.ndarray) -> np.ndarray:
         """(points − point)·n for an (N, 3) array: > 0 on the side n points to."""
-        return (np.asarray(points) - self.point) @ self.normal
+        distance: np.ndarray = (np.asarray(points) - self.point) @ self.normal
+        return distance
 
     def facing(self, origin: np.ndarray) -> Plane:
         """The same plane with n pointing to the side ``origin`` is on."""
@@ -43,7 +44,8 @@ class Plane:
         with np.errstate(divide="ignore", invalid="ignore"):
             t = float(self.point @ self.normal) / denominator
         t = np.where(np.abs(denominator) > 1e-12, t, np.nan)
-        return d * t[:, None]
+        points: np.ndarray = d * t[:, None]
+        return points
 
 
 @dataclass(frozen=True)
@@ -64,7 +66,8 @@ class Line3D:
         """Perpendicular distance of (N, 3) points to the line."""
         offset = np.asarray(points) - self.point
         along = offset @ self.direction
-        return np.linalg.norm(offset - along[:, None] * self.direction, axis=1)
+        distance: np.ndarray = np.linalg.norm(offset - along[:, None] * self.direction, axis=1)
+        return distance
 
 
 def pixel_rays(intrinsics: CameraIntrinsics, u: np.ndarray, v: np.ndarray) -> np.ndarray:

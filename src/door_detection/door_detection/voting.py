@@ -110,10 +110,12 @@ class Voter:
     def _consensus(self, group: list[DetectedDoor]) -> DetectedDoor:
         """Mean of the agreeing estimates; confidence = |group| / N."""
         def mean(name: str) -> np.ndarray:
-            return np.mean(np.stack([getattr(e, name) for e in group]), axis=0)
+            average: np.ndarray = np.mean(np.stack([getattr(e, name) for e in group]), axis=0)
+            return average
 
         def unit(vector: np.ndarray) -> np.ndarray:
-            return vector / np.linalg.norm(vector)
+            direction: np.ndarray = vector / np.linalg.norm(vector)
+            return direction
 
         with np.errstate(all="ignore"):
             corners = np.nanmean(np.stack([e.corners for e in group]), axis=0) \

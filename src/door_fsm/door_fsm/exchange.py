@@ -17,7 +17,7 @@ from __future__ import annotations
 from collections import OrderedDict
 from collections.abc import Callable, Hashable
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeVar
 
 from door_contract.payloads import OutcomeStatus, PlanningOutcome
 from door_contract.vocabulary import PlannerKind
@@ -33,14 +33,19 @@ class Proposal:
     work_s: float  # nominal execution time on the robot clock (s)
 
 
-class _Bounded(OrderedDict):
+_Key = TypeVar("_Key", bound=Hashable)
+_Value = TypeVar("_Value")
+_PairKey = tuple[PlannerKind, int]  # (kind, stamp in ns): how a message and its outcome are paired
+
+
+class _Bounded(OrderedDict[_Key, _Value]):
     """An OrderedDict that forgets its oldest entries beyond ``capacity``."""
 
     def __init__(self, capacity: int) -> None:
         super().__init__()
         self.capacity = capacity
 
-    def __setitem__(self, key: Hashable, value: Any) -> None:
+    def __setitem__(self, key: _Key, value: _Value) -> None:
         super().__setitem__(key, value)
         while len(self) > self.capacity:
             self.popitem(last=False)
@@ -51,10 +56,10 @@ class PlanExchange:
         """``work_of(message)``: the nominal execution time of a proposal message (s)."""
         self._work_of = work_of
         self.current = 0  # the request id the machine waits on
-        self._messages = _Bounded(capacity)   # (kind, stamp) → message without its outcome yet
-        self._outcomes = _Bounded(capacity)   # (kind, stamp) → outcome without its message yet
-        self._ready = _Bounded(capacity)      # request id → Proposal, until executed
-        self._executing = _Bounded(capacity)  # sent stamp (ns) → request id
+        self._messages: _Bounded[_PairKey, Any] = _Bounded(capacity)  # message without its outcome yet
+        self._outcomes: _Bounded[_PairKey, PlanningOutcome] = _Bounded(capacity)  # outcome without its message yet
+        self._ready: _Bounded[int, Proposal] = _Bounded(capacity)  # request id → Proposal, until executed
+        self._executing: _Bounded[int, int] = _Bounded(capacity)  # sent stamp (ns) → request id
 
     def begin(self, request_id: int) -> None:
         """A new request is out: answers to older ones are stale from now on."""

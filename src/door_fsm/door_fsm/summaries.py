@@ -58,7 +58,8 @@ def work_of(message: object, step_duration: float) -> float:
         if not points:
             return 0.0
         last = points[-1].time_from_start
-        return last.sec + last.nanosec * 1e-9
+        duration: float = last.sec + last.nanosec * 1e-9
+        return duration
     return len(getattr(message, "poses", ())) * step_duration
 
 

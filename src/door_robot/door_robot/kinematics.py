@@ -124,7 +124,8 @@ class RobotKinematics:
         """4×4 pose of ``frame`` in the base frame."""
         frame_id = self.frame_id(frame)
         self._at(q)
-        return pin.updateFramePlacement(self.model, self.data, frame_id).homogeneous.copy()
+        pose: np.ndarray = pin.updateFramePlacement(self.model, self.data, frame_id).homogeneous.copy()
+        return pose
 
     def frame_jacobian(self, q: np.ndarray, frame: str) -> np.ndarray:
         """6×nq Jacobian (linear rows first) of ``frame``, LOCAL_WORLD_ALIGNED."""
@@ -134,7 +135,9 @@ class RobotKinematics:
             pin.computeJointJacobians(self.model, self.data, q)
             evaluated.joint_jacobians = True
         pin.updateFramePlacement(self.model, self.data, frame_id)
-        return pin.getFrameJacobian(self.model, self.data, frame_id, pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+        jacobian: np.ndarray = pin.getFrameJacobian(self.model, self.data, frame_id,
+                                                    pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+        return jacobian
 
     def center_of_mass(self, q: np.ndarray) -> np.ndarray:
         """Whole-body centre of mass (m, base frame): c = Σ mᵢ cᵢ / Σ mᵢ."""
@@ -171,4 +174,5 @@ class RobotKinematics:
 
 def to_world(base_pose: np.ndarray, pose_in_base: np.ndarray) -> np.ndarray:
     """World pose of a base-frame pose (or (T,4,4) stack) given the base pose in the world."""
-    return np.asarray(base_pose) @ pose_in_base
+    pose: np.ndarray = np.asarray(base_pose) @ pose_in_base
+    return pose

@@ -83,7 +83,7 @@ def rewrite_mesh_uris(urdf_text: str, urdf_path: Path, scheme: MeshUris) -> str:
     if scheme is MeshUris.PACKAGE:
         return urdf_text
 
-    def as_file(match: re.Match) -> str:
+    def as_file(match: re.Match[str]) -> str:
         path = resolve_package_uri(match.group(0), urdf_path)
         return path.as_uri() if path is not None else match.group(0)
 

@@ -129,7 +129,8 @@ class GraspAxes:
     def rotation_in_grasp(self) -> np.ndarray:
         """R (3×3), the TCP's orientation in the grasp frame: R @ into_door = −x_G, R @ up = z_G."""
         source = np.column_stack([self.into_door, self.up, _cross(self.into_door, self.up)])
-        return GRASP_TARGET_AXES @ source.T
+        rotation: np.ndarray = GRASP_TARGET_AXES @ source.T
+        return rotation
 
     @classmethod
     def from_document(cls, document: Any) -> GraspAxes:
@@ -171,15 +172,15 @@ class RobotProfile:
     urdf_path: Path
     base_frame: str
     base_height: float  # m, base frame above the sole plane in the nominal posture
-    arms: dict  # Side -> ArmSpec
+    arms: dict[Side, ArmSpec]
     head_camera_frame: str
-    feet: dict  # Side -> sole frame name
-    nominal_posture: dict  # joint -> rad
+    feet: dict[Side, str]  # sole frame names
+    nominal_posture: dict[str, float]  # joint -> rad
     walking: WalkingLimits
-    walking_posture: dict = field(default_factory=dict)  # joint -> rad over the nominal posture
-    extra_frames: dict = field(default_factory=dict)  # frame name -> ExtraFrame (added to every model)
+    walking_posture: dict[str, float] = field(default_factory=dict)  # joint -> rad over the nominal posture
+    extra_frames: dict[str, ExtraFrame] = field(default_factory=dict)  # frame name -> ExtraFrame (added to every model)
     head_camera_axes: CameraAxes | None = None  # the optical axes in head_camera_frame; None: the sim's guess
-    look_posture: dict = field(default_factory=dict)  # joint -> rad over the walking posture, to see the door
+    look_posture: dict[str, float] = field(default_factory=dict)  # joint -> rad over the walking posture, to see the door
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]

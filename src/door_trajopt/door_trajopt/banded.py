@@ -124,4 +124,5 @@ class LowRankUpdatedMetric:
     def solve(self, rhs: FloatArray) -> FloatArray:
         """``(M + J^T J)^{-1} rhs`` for one or several right-hand sides."""
         first = self.base.solve(rhs)
-        return first - self.basis @ cho_solve(self.capacitance, self.jacobian @ first)
+        solution: FloatArray = first - self.basis @ cho_solve(self.capacitance, self.jacobian @ first)
+        return solution

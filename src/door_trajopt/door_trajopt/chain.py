@@ -52,19 +52,23 @@ class ArmChain:
     def body_frame(self, chain_index: int) -> str:
         model = self.kinematics.model
         joint_id = model.getJointId(self.joint_names[chain_index])
-        return next(f.name for f in model.frames if f.parentJoint == joint_id and f.type.name == "BODY")
+        frame: str = next(f.name for f in model.frames if f.parentJoint == joint_id and f.type.name == "BODY")
+        return frame
 
     @property
     def lower(self) -> np.ndarray:
-        return self.kinematics.lower_limits[self.indices]
+        limits: np.ndarray = self.kinematics.lower_limits[self.indices]
+        return limits
 
     @property
     def upper(self) -> np.ndarray:
-        return self.kinematics.upper_limits[self.indices]
+        limits: np.ndarray = self.kinematics.upper_limits[self.indices]
+        return limits
 
     @property
     def velocity_limits(self) -> np.ndarray:
-        return self.kinematics.velocity_limits[self.indices]
+        limits: np.ndarray = self.kinematics.velocity_limits[self.indices]
+        return limits
 
     def full(self, chain_q: np.ndarray) -> np.ndarray:
         q = self.body_q.copy()
@@ -72,7 +76,8 @@ class ArmChain:
         return q
 
     def chain_of(self, full_q: np.ndarray) -> np.ndarray:
-        return np.asarray(full_q)[self.indices].copy()
+        chain_q: np.ndarray = np.asarray(full_q)[self.indices].copy()
+        return chain_q
 
     def tcp_pose(self, chain_q: np.ndarray) -> np.ndarray:
         return self.kinematics.frame_pose(self.full(chain_q), self.tcp_frame)

@@ -162,10 +162,12 @@ def robust_cholesky(schur: FloatArray) -> tuple[FloatArray, bool]:
     scale = max(float(np.mean(np.diag(schur))), np.finfo(float).tiny)
     for shift in REGULARISATIONS:
         try:
-            return cho_factor(schur + shift * scale * np.eye(schur.shape[0]))
+            factor: tuple[FloatArray, bool] = cho_factor(schur + shift * scale * np.eye(schur.shape[0]))
+            return factor
         except LinAlgError:
             continue
-    return cho_factor(schur + scale * np.eye(schur.shape[0]))
+    factor = cho_factor(schur + scale * np.eye(schur.shape[0]))
+    return factor
 
 
 def unit_rows(indices: IntArray, sign: float, n_variables: int) -> sp.csr_matrix:

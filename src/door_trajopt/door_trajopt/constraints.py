@@ -88,7 +88,8 @@ class ConstraintStack:
     @property
     def n_variables(self) -> int:
         """Number of free variables (columns of the stacked Jacobian)."""
-        return self.columns.stop - self.columns.start
+        count: int = self.columns.stop - self.columns.start
+        return count
 
     def offsets(self) -> FloatArray:
         """Row offsets of the blocks (length ``len(blocks) + 1``)."""

@@ -31,7 +31,8 @@ def cross_matrix(vector: np.ndarray) -> np.ndarray:
 def rotation_about(unit_axis: np.ndarray, angle: float) -> np.ndarray:
     """Rodrigues: R = I + sin a [k]ₓ + (1 − cos a) [k]ₓ² for a unit axis k."""
     cross = cross_matrix(unit_axis)
-    return np.eye(3) + math.sin(angle) * cross + (1.0 - math.cos(angle)) * (cross @ cross)
+    rotation: np.ndarray = np.eye(3) + math.sin(angle) * cross + (1.0 - math.cos(angle)) * (cross @ cross)
+    return rotation
 
 
 def rotation_about_up(angle: float) -> np.ndarray:
@@ -55,7 +56,8 @@ class DoorModel:
         """Unit vector in the door plane from the hinge towards the grasp point (θ = 0)."""
         offset = self.grasp_point - self.hinge_point
         offset -= (offset @ UP) * UP + (offset @ self.normal) * self.normal
-        return offset / np.linalg.norm(offset)
+        direction: np.ndarray = offset / np.linalg.norm(offset)
+        return direction
 
     @cached_property
     def hinge_sign(self) -> float:
@@ -127,7 +129,8 @@ class DoorModel:
 
 def rotation_vector(rotation: np.ndarray) -> np.ndarray:
     """log(R) as an axis-angle vector (|ω| = angle ≤ π), by Pinocchio's log₃."""
-    return pin.log3(np.asarray(rotation, dtype=float))
+    vector: np.ndarray = pin.log3(np.asarray(rotation, dtype=float))
+    return vector
 
 
 def door_model_from_estimate(estimate: DoorEstimate, world_to_base: np.ndarray, push: bool,

@@ -106,7 +106,8 @@ def _task_and_null_space_step(jacobian: np.ndarray, error: np.ndarray, pull: np.
     left, singular, right_t = np.linalg.svd(jacobian, full_matrices=False)
     task = right_t.T @ ((singular / (singular**2 + damping**2)) * (left.T @ error))
     ranged = right_t[singular > 1e-9 * max(float(singular[0]), 1e-300)]
-    return task + pull - ranged.T @ (ranged @ pull)
+    step: np.ndarray = task + pull - ranged.T @ (ranged @ pull)
+    return step
 
 
 def solve_ik_multistart(chain: ArmChain, target: np.ndarray, seeds: list[np.ndarray],

@@ -25,8 +25,7 @@ from typing import Protocol
 import numpy as np
 
 from door_contract.ranges import FieldRange, check_in_range
-from door_contract.vocabulary import Motion
-from door_robot.profile import Side
+from door_contract.vocabulary import Motion, Side
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import UP, DoorModel, rotation_vector
 from door_trajopt.ik import IkOptions, solve_ik, solve_ik_multistart
@@ -176,7 +175,8 @@ class _GraspTarget:
     tcp_in_grasp: np.ndarray
 
     def pose(self, theta: float, phi: float) -> np.ndarray:
-        return self.door.grasp_pose(theta, phi) @ self.tcp_in_grasp
+        pose: np.ndarray = self.door.grasp_pose(theta, phi) @ self.tcp_in_grasp
+        return pose
 
     def derivatives(self, theta: float, phi: float) -> np.ndarray:
         return self.door.pose_derivatives(theta, phi)
@@ -638,7 +638,8 @@ def _door_stop_offset(door: DoorModel, theta: float, hand: np.ndarray, lateral: 
     direction = door.leaf_rotation(theta) @ door.along
     if abs(direction[1]) < 0.2:
         raise TrajoptError(f"the leaf at {theta:.2f} rad does not cross the robot's front")
-    return (lateral - hand[1]) / direction[1] * direction
+    offset: np.ndarray = (lateral - hand[1]) / direction[1] * direction
+    return offset
 
 
 def _continuation_ik(chain: ArmChain, targets: list[np.ndarray], start_chain: np.ndarray) -> np.ndarray:
@@ -664,7 +665,8 @@ def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray 
     return solve_ik_multistart(chain, target, seeds, mask=mask).chain_q
 
 
-def _through_keys(problem: TrajectoryProblem, keys: list[tuple[int, np.ndarray]], door: tuple) -> np.ndarray:
+def _through_keys(problem: TrajectoryProblem, keys: list[tuple[int, np.ndarray]],
+                  door: tuple[float, float]) -> np.ndarray:
     """Piecewise-linear interpolation through key waypoints ([Zucker 2013] Sec. III)."""
     times = [t for t, _ in keys]
     values = np.array([np.concatenate([q, door]) for _, q in keys])

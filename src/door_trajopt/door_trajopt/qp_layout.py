@@ -176,7 +176,8 @@ class QpLayout:
                 self.a_constant_values,
             ]
         )
-        return listed[self.a_permutation]
+        permuted: FloatArray = listed[self.a_permutation]
+        return permuted
 
     def a_matrix(self, equality: sp.spmatrix, inequality: sp.spmatrix) -> sp.csc_matrix:
         """Build the QP constraint matrix with the fixed structure (for ``setup``)."""

@@ -526,7 +526,7 @@ class SqpSolver(BackendSolver[SqpOptions]):
         active bound is enough).  The refinement re-solves, warm-started, at
         ``qp_refine_tolerance``.
         """
-        result = workspace.solve(raise_error=False)
+        result: SimpleNamespace = workspace.solve(raise_error=False)
         options = self._options
         polished = result.info.status_polish == 1
         if polished or result.info.status_val not in SOLVED_STATUSES:
@@ -535,7 +535,7 @@ class SqpSolver(BackendSolver[SqpOptions]):
             return result
         refine = options.qp_refine_tolerance
         workspace.update_settings(eps_abs=refine, eps_rel=refine)
-        refined = workspace.solve(raise_error=False)
+        refined: SimpleNamespace = workspace.solve(raise_error=False)
         workspace.update_settings(eps_abs=options.qp_tolerance, eps_rel=options.qp_tolerance)
         return refined
 

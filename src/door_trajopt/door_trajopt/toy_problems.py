@@ -115,7 +115,8 @@ class PlanarDoor:
     def handle_points(self, hinge_angles: FloatArray, handle_angles: FloatArray) -> FloatArray:
         """World handle points ``p_h(phi, beta)``, shape ``(T, 2)``."""
         turn = rotation(self.closed_heading + hinge_angles)
-        return np.asarray(self.hinge) + np.einsum("tij,tj->ti", turn, self._local(handle_angles))
+        points: FloatArray = np.asarray(self.hinge) + np.einsum("tij,tj->ti", turn, self._local(handle_angles))
+        return points
 
     def handle_jacobians(self, hinge_angles: FloatArray, handle_angles: FloatArray) -> FloatArray:
         """``[dp_h/dphi, dp_h/dbeta]``, shape ``(T, 2, 2)``."""
@@ -218,7 +219,8 @@ class JointValue:
 
     def value(self, trajectory: FloatArray) -> FloatArray:
         """Deviation of the DOF from its target at each waypoint."""
-        return trajectory[self.waypoints, self.dof] - self.target
+        deviation: FloatArray = trajectory[self.waypoints, self.dof] - self.target
+        return deviation
 
     def jacobian(self, trajectory: FloatArray) -> sp.csr_matrix:
         """Constant selection rows."""

@@ -79,7 +79,8 @@ def fixed_dof(name: str, dof: int, values: dict[int, float], m: int, n: int) -> 
                          shape=(len(times), n * m))
 
     def value(trajectory: np.ndarray) -> np.ndarray:
-        return trajectory[list(times), dof] - targets
+        deviation: np.ndarray = trajectory[list(times), dof] - targets
+        return deviation
 
     ones = np.ones(len(times))
     return Constraint(name, ConstraintKind.EQUALITY, len(times), value, lambda _: rows, rows.astype(bool),

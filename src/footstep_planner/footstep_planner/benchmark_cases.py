@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass
 
 from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
@@ -78,7 +78,7 @@ def doors(widths: tuple[float, ...] = WIDTHS) -> Iterator[DoorCase]:
 
 
 def approach_cases(options: FootstepPlannerOptions, settings: GoalSettings = GoalSettings(),
-                   grid: dict | None = None) -> list[PlanningCase]:
+                   grid: Mapping[str, tuple[float, ...]] | None = None) -> list[PlanningCase]:
     """Walks to the stand pose from every start of the grid, for every door."""
     grid = grid or {}
     cases = []

@@ -41,4 +41,5 @@ class ClosedSetGrid:
         row = np.floor((y - self.y0) / self.resolution).astype(np.int64)
         bins = np.floor((yaw + math.pi) * (self.yaw_bins / (2.0 * math.pi)))
         yaw_bin = bins.astype(np.int64) % self.yaw_bins  # the bins wrap: no need to wrap yaw
-        return (((column * self.rows + row) * self.yaw_bins + yaw_bin) * 2 + int(left)).tolist()
+        keys: list[int] = (((column * self.rows + row) * self.yaw_bins + yaw_bin) * 2 + int(left)).tolist()
+        return keys

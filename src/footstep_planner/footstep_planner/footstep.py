@@ -126,4 +126,5 @@ def foot_corners(step: Footstep, foot_length: float, foot_width: float) -> Float
     """Sole rectangle corners of ``step`` (counter-clockwise), shape (4, 2)."""
     corners = rectangle_corners(np.array([step.x]), np.array([step.y]), np.array([step.yaw]),
                                 foot_length / 2.0, foot_width / 2.0)
-    return corners[0]
+    sole: FloatArray = corners[0]
+    return sole

@@ -24,7 +24,8 @@ def wrap_angle(angle: float) -> float:
 
 def wrap_angles(angles: FloatArray) -> FloatArray:
     """Element-wise :func:`wrap_angle`."""
-    return np.remainder(angles + np.pi, 2.0 * np.pi) - np.pi
+    wrapped: FloatArray = np.remainder(angles + np.pi, 2.0 * np.pi) - np.pi
+    return wrapped
 
 
 def rectangle_corners(centre_x: FloatArray, centre_y: FloatArray, yaw: FloatArray,
@@ -86,7 +87,8 @@ def edge_normals(vertices: FloatArray) -> FloatArray:
     """
     edges = np.roll(vertices, -1, axis=0) - vertices
     lengths = np.hypot(edges[:, 0], edges[:, 1])
-    return np.stack((edges[:, 1], -edges[:, 0]), axis=1) / lengths[:, None]
+    normals: FloatArray = np.stack((edges[:, 1], -edges[:, 0]), axis=1) / lengths[:, None]
+    return normals
 
 
 def interior_angles(vertices: FloatArray) -> FloatArray:
@@ -95,7 +97,8 @@ def interior_angles(vertices: FloatArray) -> FloatArray:
     to_next = np.roll(vertices, -1, axis=0) - vertices
     cosine = np.sum(to_previous * to_next, axis=1) / (
         np.hypot(*to_previous.T) * np.hypot(*to_next.T))
-    return np.arccos(np.clip(cosine, -1.0, 1.0))
+    angles: FloatArray = np.arccos(np.clip(cosine, -1.0, 1.0))
+    return angles
 
 
 @dataclass(frozen=True, eq=False)
@@ -185,7 +188,8 @@ def rectangles_overlap_polygons(centres: FloatArray, axes: FloatArray, half_exte
         extent = half_extents[:, axis:axis + 1]
         separated |= ((on_axis.max(axis=2) < centre - extent)
                       | (on_axis.min(axis=2) > centre + extent))
-    return ~separated[:count]
+    overlapping: BoolArray = ~separated[:count]
+    return overlapping
 
 
 def rectangles_touch_any(x: FloatArray, y: FloatArray, yaw: FloatArray, half_length: FloatArray,

@@ -67,7 +67,8 @@ class FootstepHeuristic:
     def remaining_distance(self, centre_x: FloatArray, centre_y: FloatArray) -> FloatArray:
         """d: distance of the stance centres beyond the goal tolerance (m)."""
         distance = np.hypot(centre_x - self.goal.x, centre_y - self.goal.y)
-        return np.maximum(distance - self.options.goal_position_tolerance, 0.0)
+        beyond_tolerance: FloatArray = np.maximum(distance - self.options.goal_position_tolerance, 0.0)
+        return beyond_tolerance
 
     def remaining_turn(self, yaw: FloatArray) -> FloatArray:
         """a: yaw error beyond the goal tolerance (rad)."""
@@ -85,8 +86,9 @@ class FootstepHeuristic:
         walking = self.table.min_steps(distance, yaw - direction, self.goal.yaw - direction,
                                        next_swing)
         steps = np.maximum(walking, np.ceil(turn / self.max_turn - 1e-9))
-        return (options.step_cost * (1.0 + steps) + options.distance_weight * distance
-                + options.turn_weight * turn)
+        estimates: FloatArray = (options.step_cost * (1.0 + steps) + options.distance_weight * distance
+                                 + options.turn_weight * turn)
+        return estimates
 
     def estimate_one(self, centre: Pose2D, next_swing: Foot) -> float:
         """h of a single state whose stance centre pose is ``centre``."""

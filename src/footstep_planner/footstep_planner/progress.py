@@ -116,7 +116,7 @@ class ProgressTable:
         ``distance`` (as floats); alpha, beta as in the module docstring (rad)."""
         alpha_bin = self.bin_of(alpha)
         rows = self.rows[next_swing][alpha_bin * self.bins + self.bin_of(beta)]
-        steps = np.count_nonzero(rows < (distance - 1e-9)[:, None], axis=1).astype(float)
+        steps: FloatArray = np.count_nonzero(rows < (distance - 1e-9)[:, None], axis=1).astype(float)
         beyond = steps > TABLE_STEPS
         if np.any(beyond):
             rest = (distance[beyond] - self.tail[next_swing][alpha_bin[beyond]]) / self.max_shift
@@ -126,7 +126,8 @@ class ProgressTable:
     def bin_of(self, angle: FloatArray) -> np.ndarray:
         """Heading bin of relative angles (rad, any turn: the bins wrap)."""
         width = 2.0 * math.pi / self.bins
-        return np.floor((np.asarray(angle) + math.pi) / width).astype(np.int64) % self.bins
+        bins: np.ndarray = np.floor((np.asarray(angle) + math.pi) / width).astype(np.int64) % self.bins
+        return bins
 
 
 @dataclass(frozen=True)
@@ -221,7 +222,8 @@ def _best_advance(shifts: FloatArray, headings: FloatArray, radius: float) -> Fl
     phi = np.arctan2(shifts[:, 1], shifts[:, 0])
     offset = np.abs(wrap_angles(-phi[None, :] - headings[:, None]))
     outside = np.maximum(offset - radius, 0.0)
-    return np.max(rho * np.cos(np.minimum(outside, math.pi)), axis=1)
+    peaks: FloatArray = np.max(rho * np.cos(np.minimum(outside, math.pi)), axis=1)
+    return peaks
 
 
 def _recurse(advance: Mapping[Foot, dict[int, FloatArray]], start: FloatArray,

@@ -172,5 +172,6 @@ def _boxes_overlap(centres: FloatArray, radii: FloatArray, polygons: PackedPolyg
     """(N, M): does the square of half side ``radius`` about each centre (it holds the
     rectangle) overlap each polygon's bounding box?  A cheap filter before the exact test."""
     low, high = centres - radii[:, None], centres + radii[:, None]
-    return np.all((low[:, None, :] <= polygons.box_max[None]) &
-                  (high[:, None, :] >= polygons.box_min[None]), axis=2)
+    overlap: BoolArray = np.all((low[:, None, :] <= polygons.box_max[None]) &
+                                (high[:, None, :] >= polygons.box_min[None]), axis=2)
+    return overlap
