@@ -8,6 +8,7 @@ from dataclasses import replace
 import pytest
 from footstep_scenes import (
     DEFAULT_OPTIONS,
+    SEPARATION,
     alternates,
     collisions_along,
     door_facing_robot,
@@ -72,9 +73,18 @@ def test_turning_in_place_by_90_degrees() -> None:
     assert (forward, lateral, turn) == pytest.approx((0.0, 0.20, 0.0), abs=1e-9)
 
 
-def test_already_at_the_goal_needs_no_step() -> None:
+def test_already_at_the_goal_one_step_squares_the_feet() -> None:
+    """Never an empty plan (it proposes nothing: the FSM waited for a proposal until its
+    planning timeout): the foot farther from the nominal stance steps beside the other."""
     result = _succeeded(OPEN_SPACE.plan(stance_at(1.0, 1.0, 0.5), Pose2D(1.01, 1.0, 0.5)))
-    assert result.plan.steps == ()
+    assert len(result.plan.steps) == 1 and result.expansions == 0
+    start = stance_at(1.0, 1.0, 0.0)
+    off = Stance(start.left, Footstep(start.right.x + 0.03, start.right.y, 0.0, Foot.RIGHT))
+    squared = _succeeded(OPEN_SPACE.plan(off, Pose2D(1.0, 1.0, 0.0))).plan.steps
+    assert len(squared) == 1
+    kept = off.right if squared[0].foot is Foot.LEFT else off.left
+    assert squared[0] == kept.nominal_partner(SEPARATION)  # the feet stand nominal again
+    assert squared[0].pose.distance_to(off.foot(squared[0].foot).pose) == pytest.approx(0.03)
 
 
 @pytest.mark.parametrize("opening", list(DoorOpening))
