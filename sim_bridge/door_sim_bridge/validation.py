@@ -16,23 +16,13 @@ from door_sim_bridge.errors import SimulationError
 
 __all__ = ["FieldRange", "check_ranges", "require"]
 
-Bounds = FieldRange | tuple[float, float, str]
-"""A field's interval: a :class:`FieldRange`, or the ``(low, high, unit)`` of a closed one as
-:mod:`door_sim_bridge.walking` still states its options'."""
-
-
 def require(owner: str, name: str, value: object, allowed: FieldRange, integer: bool = False) -> None:
     """Raise :class:`SimulationError` naming ``<owner>.<name>`` unless ``value`` is a finite real
     number (an ``int`` when ``integer``) within ``allowed``."""
     check_in_range(f"{owner}.{name}", value, allowed, SimulationError, integer)
 
 
-def check_ranges(owner: object, ranges: Mapping[str, Bounds], integers: Collection[str] = ()) -> None:
+def check_ranges(owner: object, ranges: Mapping[str, FieldRange], integers: Collection[str] = ()) -> None:
     """:func:`require` for each field of ``owner`` named in ``ranges`` (those in ``integers`` as
     ``int``), labelled by the owner's type."""
-    check_fields(owner, {name: _field_range(bounds) for name, bounds in ranges.items()}, SimulationError,
-                 type(owner).__name__, integers)
-
-
-def _field_range(bounds: Bounds) -> FieldRange:
-    return bounds if isinstance(bounds, FieldRange) else FieldRange(*bounds)
+    check_fields(owner, ranges, SimulationError, type(owner).__name__, integers)

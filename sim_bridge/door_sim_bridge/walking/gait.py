@@ -20,7 +20,7 @@ import placo
 
 from door_contract.converters.footsteps import FootPlacement
 from door_contract.vocabulary import Foot
-from door_sim_bridge.validation import check_ranges
+from door_sim_bridge.validation import FieldRange, check_ranges
 
 SIDE_OF_FOOT = {Foot.LEFT: placo.HumanoidRobot_Side.left, Foot.RIGHT: placo.HumanoidRobot_Side.right}
 
@@ -46,11 +46,11 @@ class GaitOptions:
 
     def __post_init__(self) -> None:
         check_ranges(self, {
-            "single_support_s": (0.2, 3.0, "s"), "double_support_ratio": (0.0, 2.0, ""),
-            "start_end_ratio": (1.0, 10.0, ""), "foot_height": (0.01, 0.2, "m"),
-            "foot_rise_ratio": (0.0, 0.45, ""), "zmp_margin": (0.0, 0.05, "m"),
-            "planned_timesteps": (50, 5000, "steps"), "in_place_tolerance": (0.0, 0.05, "m"),
-            "settle_s": (0.1, 5.0, "s")})
+            "single_support_s": FieldRange(0.2, 3.0, "s"), "double_support_ratio": FieldRange(0.0, 2.0, ""),
+            "start_end_ratio": FieldRange(1.0, 10.0, ""), "foot_height": FieldRange(0.01, 0.2, "m"),
+            "foot_rise_ratio": FieldRange(0.0, 0.45, ""), "zmp_margin": FieldRange(0.0, 0.05, "m"),
+            "planned_timesteps": FieldRange(50, 5000, "steps"), "in_place_tolerance": FieldRange(0.0, 0.05, "m"),
+            "settle_s": FieldRange(0.1, 5.0, "s")})
 
     @property
     def step_duration_s(self) -> float:

@@ -45,7 +45,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from door_sim_bridge.validation import check_ranges
+from door_sim_bridge.validation import FieldRange, check_ranges
 
 
 @dataclass(frozen=True)
@@ -65,11 +65,12 @@ class StabilizerOptions:
     max_walking_force: float = 40.0  # N, the same while walking (a pushed leaf escapes the hand)
 
     def __post_init__(self) -> None:
-        check_ranges(self, {"force_deadband": (0.0, 0.2, "m"), "cop_deadband": (0.0, 0.2, "m"),
-                            "cop_gain": (0.0, 50.0, "1/s"), "cop_filter_s": (0.0, 10.0, "s"),
-                            "force_filter_s": (0.0, 10.0, "s"), "max_force": (0.0, 5000.0, "N"),
-                            "max_walking_force": (0.0, 5000.0, "N"), "leak_time_s": (0.05, 100.0, "s"),
-                            "max_offset": (0.0, 0.2, "m"), "max_rate": (0.001, 5.0, "m/s")})
+        check_ranges(self, {"force_deadband": FieldRange(0.0, 0.2, "m"), "cop_deadband": FieldRange(0.0, 0.2, "m"),
+                            "cop_gain": FieldRange(0.0, 50.0, "1/s"), "cop_filter_s": FieldRange(0.0, 10.0, "s"),
+                            "force_filter_s": FieldRange(0.0, 10.0, "s"), "max_force": FieldRange(0.0, 5000.0, "N"),
+                            "max_walking_force": FieldRange(0.0, 5000.0, "N"),
+                            "leak_time_s": FieldRange(0.05, 100.0, "s"), "max_offset": FieldRange(0.0, 0.2, "m"),
+                            "max_rate": FieldRange(0.001, 5.0, "m/s")})
 
 
 @dataclass(frozen=True, eq=False)
