@@ -6,17 +6,16 @@ from typing import Any
 
 from door_contract.vocabulary import DoorOpening, HingeSide
 from door_sim_bridge.world import CameraConfig, DoorConfig, GraspModel, StanceConfig, WindConfig, WorldConfig
+from door_sim_bridge.world_ranges import COLOUR_FIELDS
 
-__all__ = ["COLOUR_PARAMETERS", "world_config"]
+__all__ = ["world_config"]
 
-COLOUR_PARAMETERS = ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour")
-"""Node parameters that are DoorConfig colour fields of the same name."""
 
 
 def world_config(p: dict[str, Any]) -> WorldConfig:
     """The world of the node's parameters (SimulationError names a bad field)."""
     camera_rate = p["camera_rate"] if p["camera_rate"] > 0 else 1.0
-    colours: dict[str, Any] = {name: tuple(p[name]) for name in COLOUR_PARAMETERS}  # DoorConfig checks each
+    colours: dict[str, Any] = {name: tuple(p[name]) for name in COLOUR_FIELDS}  # DoorConfig checks each
     return WorldConfig(
         robot_profile=p["robot_profile"], physics_rate=p["physics_rate"], seed=p["seed"],
         grasp_break_force=p["grasp_break_force"], grasp_model=GraspModel(p["grasp_model"]),

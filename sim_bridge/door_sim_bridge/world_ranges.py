@@ -13,6 +13,10 @@ from door_contract.ranges import FieldRange
 COLOUR_COMPONENT = FieldRange(0.0, 1.0, "")
 """Each of a colour's red, green and blue."""
 
+COLOUR_FIELDS = ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour")
+"""The scene's colours: :class:`~door_sim_bridge.world.config.DoorConfig` fields and sim bridge
+parameters of the same names (RGB, each in :data:`COLOUR_COMPONENT`)."""
+
 DIRECTION_COMPONENT = FieldRange(-1e6, 1e6, "")
 """Each of a direction's x, y and z."""
 

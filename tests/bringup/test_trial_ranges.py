@@ -4,9 +4,10 @@ ones drawing the very doors they drew before."""
 import numpy as np
 import pytest
 
-from door_bringup.door_task import APPEARANCE_PARTS, TaskOptions
+from door_bringup.door_task import TaskOptions
 from door_bringup.monte_carlo import RECORDED_BEFORE, draw_trials, main
 from door_bringup.trial_ranges import FULL, NARROW, RangeSet, ranges_named
+from door_sim_bridge.world_ranges import COLOUR_FIELDS
 
 FIELDS = ("distance", "lateral", "yaw", "door_width", "handle_height", "wind", "depth_noise")
 
@@ -22,7 +23,7 @@ def test_full_ranges_are_issue_13s_and_every_draw_lies_within_them():
         assert all(low <= value <= high for value in values), name
         assert max(values) - min(values) > 0.8 * (high - low), name  # the whole range is visited
     colours = [dict(trial.colours) for trial in trials]
-    assert all(set(c) == set(APPEARANCE_PARTS) for c in colours)
+    assert all(set(c) == set(COLOUR_FIELDS) for c in colours)
     assert all(0.0 <= channel <= 1.0 for c in colours for rgb in c.values() for channel in rgb)
     assert len({c["door_colour"] for c in colours}) == len(trials)  # every scene looks different
 

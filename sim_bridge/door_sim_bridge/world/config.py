@@ -24,6 +24,7 @@ from door_sim_bridge.walking.stabilizer import StabilizerOptions
 from door_sim_bridge.world_ranges import (
     CAMERA_RANGES,
     COLOUR_COMPONENT,
+    COLOUR_FIELDS,
     DIRECTION_COMPONENT,
     DOOR_RANGES,
     EXECUTION_RANGES,
@@ -187,7 +188,7 @@ class DoorConfig:
     def _check_colours(self) -> None:
         """Each colour must be RGB in [0, 1]; any combination renders, so none is refused (a
         white leaf on a white wall is a scene to detect, not a configuration error)."""
-        for name in ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour"):
+        for name in COLOUR_FIELDS:
             _require_colour("DoorConfig", name, getattr(self, name))
 
 

@@ -57,10 +57,6 @@ RECORDER_CONFIRM_S = 30.0
 stops the graph: a safety net, the wait ends on the recorder's heartbeat (twice a second)."""
 
 
-APPEARANCE_PARTS = ("door_colour", "frame_colour", "handle_colour", "wall_colour", "floor_colour")
-"""The sim bridge's colour parameters (RGB in [0, 1]) a trial may set."""
-
-
 @dataclass(frozen=True)
 class TaskOptions:
     robot: str = "talos"  # a robot profile, params/robot_<name>.yaml
@@ -83,7 +79,7 @@ class TaskOptions:
     compression: str = "none"  # "zstd": compressed mcap chunks (with storage mcap)
     camera_rate: float = 2.0  # Hz of sim time; 10 Hz cuts detection to ~0.8 s but halves the sim's speed
     foxglove_port: int | None = None  # serve the graph on ws://127.0.0.1:<port> (None: no live view)
-    colours: tuple[tuple[str, tuple[float, float, float]], ...] = ()  # (APPEARANCE_PARTS name, RGB); () keeps the sim's
+    colours: tuple[tuple[str, tuple[float, float, float]], ...] = ()  # (COLOUR_FIELDS name, RGB); () keeps the sim's
 
     def node_overrides(self) -> dict[str, list[str]]:
         """``-p name:=value`` arguments per node; the robot goes to every node that declares

@@ -15,7 +15,8 @@ from enum import StrEnum
 
 import numpy as np
 
-from door_bringup.door_task import APPEARANCE_PARTS, TaskOptions
+from door_bringup.door_task import TaskOptions
+from door_sim_bridge.world_ranges import COLOUR_FIELDS
 
 __all__ = ["FULL", "NARROW", "RangeSet", "TrialRanges", "ranges_named"]
 
@@ -44,7 +45,7 @@ class TrialRanges:
                           depth_noise=_uniform(rng, self.depth_noise))
         if not self.appearance:
             return options
-        return replace(options, colours=tuple((part, _colour(rng)) for part in APPEARANCE_PARTS))
+        return replace(options, colours=tuple((part, _colour(rng)) for part in COLOUR_FIELDS))
 
 
 def _uniform(rng: np.random.Generator, interval: tuple[float, float]) -> float:
