@@ -181,13 +181,17 @@ class FootstepPlanner:
 
     def _at_goal(self, start: Stance, goal: Pose2D) -> bool:
         """The start is already the nominal stance at the goal (within the tolerances)."""
-        nominal = Stance.nominal(start.body_pose, self._options.nominal_foot_separation)
         tolerance = self._options.goal_position_tolerance
         return (is_goal_centre(start.body_pose, goal, self._options)
-                and start.left.pose.distance_to(nominal.left.pose) <= tolerance
-                and start.right.pose.distance_to(nominal.right.pose) <= tolerance
+                and max(self._off_nominal(start)) <= tolerance
                 and start.left.pose.yaw_difference(start.right.pose)
                 <= self._options.goal_yaw_tolerance)
+
+    def _off_nominal(self, start: Stance) -> tuple[float, float]:
+        """How far the left and the right sole stand from the nominal stance at the start's
+        body pose (m)."""
+        nominal = Stance.nominal(start.body_pose, self._options.nominal_foot_separation)
+        return start.left.pose.distance_to(nominal.left.pose), start.right.pose.distance_to(nominal.right.pose)
 
     def _squaring_step(self, start: Stance) -> Footstep:
         """The one step of a robot already at its goal: the foot farther from the nominal stance
@@ -195,9 +199,7 @@ class FootstepPlanner:
         was judged failed (a sole 7.9 cm off its plan, the base within the goal's tolerance) was
         repeated as an empty plan, which proposes nothing, and the FSM waited for a proposal
         until its planning timeout, three repeats in a row."""
-        nominal = Stance.nominal(start.body_pose, self._options.nominal_foot_separation)
-        left_off = start.left.pose.distance_to(nominal.left.pose)
-        right_off = start.right.pose.distance_to(nominal.right.pose)
+        left_off, right_off = self._off_nominal(start)
         kept, moved = (start.right, start.left) if left_off > right_off else (start.left, start.right)
         squared = kept.nominal_partner(self._options.nominal_foot_separation)
         return moved if self._checker.footstep_collides(squared) else squared
