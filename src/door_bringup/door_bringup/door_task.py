@@ -156,9 +156,10 @@ class ScriptedOperator(Node):
         if values is not None:
             self.recorded = values
 
-    def has_recorded(self, topic: str, message: object) -> bool:
-        """Whether the recorder's last message on the latched ``topic`` is ``message``."""
-        return self.recorded.get(recorded_key(topic)) == message_digest(message)
+    def has_recorded(self, topic: str, digest: str) -> bool:
+        """Whether the recorder's last message on the latched ``topic`` has ``digest``
+        (:func:`~door_bringup.bags.recorder.message_digest`)."""
+        return self.recorded.get(recorded_key(topic)) == digest
 
     def _on_odom(self, msg: Odometry) -> None:
         self.base_xy = (round(msg.pose.pose.position.x, 3), round(msg.pose.pose.position.y, 3))
@@ -202,8 +203,8 @@ def _wait_until_recorded(operator: ScriptedOperator, terminal_state: String) -> 
     """Keep the graph up until the recorder has written the FSM's terminal state: stopped at once,
     the bag of a push door that reached DONE once ended at WALK_THROUGH (the recorder, behind
     under load, had not taken the latched DONE before the FSM's process was gone)."""
-    deadline = time.monotonic() + RECORDER_CONFIRM_S
-    while not operator.has_recorded(Topics.TASK_STATE.name, terminal_state):
+    deadline, digest = time.monotonic() + RECORDER_CONFIRM_S, message_digest(terminal_state)
+    while not operator.has_recorded(Topics.TASK_STATE.name, digest):
         if time.monotonic() > deadline:
             print(f"warning: the bag may lack the terminal state {terminal_state.data} "
                   f"(the recorder did not confirm it within {RECORDER_CONFIRM_S:g} s)", flush=True)

@@ -90,10 +90,9 @@ class BagRecorder(Node):
         def write(data: bytes) -> None:
             self.writer.write(topic, type_name, self.get_clock().now().nanoseconds, data)
             self.count += 1
-            self.heartbeat.update(Health.OK, "recording", recorded=self.count)
-            if topic in self.latched_topics:
-                self.heartbeat.update(Health.OK, "recording", **{recorded_key(topic): message_digest(
-                    deserialize_message(data, msg_type))})
+            latest = ({recorded_key(topic): message_digest(deserialize_message(data, msg_type))}
+                      if topic in self.latched_topics else {})
+            self.heartbeat.update(Health.OK, "recording", recorded=self.count, **latest)
         return write
 
     def destroy_node(self) -> None:
