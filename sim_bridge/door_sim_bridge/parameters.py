@@ -37,6 +37,11 @@ BRIDGE_PARAMETERS = (
     ParameterSpec("grasp_model", "compliant", "how a closed hand holds the lever: at a point, free to turn "
                   "about it (compliant), or locked in orientation, sliding along the lever (rigid)",
                   choices=("compliant", "rigid")),
+    ParameterSpec("contact_solver", "sequential_impulse", "PyBullet's constraint solver: iterative "
+                  "(sequential_impulse, solver_iterations sweeps) or direct LCP (dantzig)",
+                  choices=("sequential_impulse", "dantzig")),
+    ParameterSpec("solver_iterations", 50, "sweeps per physics step of the iterative constraint solver",
+                  WORLD_RANGES["solver_iterations"]),
     ParameterSpec("stance_distance", 3.0, "robot base to the door plane at the start", STANCE_RANGES["distance"]),
     ParameterSpec("stance_lateral", 0.0, "robot lateral offset from the doorway centre", STANCE_RANGES["lateral_offset"]),
     ParameterSpec("supervisor_timeout", 3.0, "stop every execution when the supervisor's heartbeat "

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any
 
 from door_contract.vocabulary import DoorOpening, HingeSide
-from door_sim_bridge.world import CameraConfig, DoorConfig, GraspModel, StanceConfig, WindConfig, WorldConfig
+from door_sim_bridge.world import CameraConfig, ContactSolver, DoorConfig, GraspModel, StanceConfig, WindConfig, WorldConfig
 from door_sim_bridge.world_ranges import COLOUR_FIELDS
 
 __all__ = ["world_config"]
@@ -19,6 +19,7 @@ def world_config(p: dict[str, Any]) -> WorldConfig:
     return WorldConfig(
         robot_profile=p["robot_profile"], physics_rate=p["physics_rate"], seed=p["seed"],
         grasp_break_force=p["grasp_break_force"], grasp_model=GraspModel(p["grasp_model"]),
+        contact_solver=ContactSolver(p["contact_solver"]), solver_iterations=p["solver_iterations"],
         door=DoorConfig(opening=DoorOpening(p["door_opening"]), hinge_side=HingeSide(p["hinge_side"]),
                         width=p["door_width"], handle_height=p["handle_height"],
                         closer_stiffness=p["closer_stiffness"], wind=WindConfig(amplitude=p["wind_amplitude"]),

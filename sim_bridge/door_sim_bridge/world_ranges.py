@@ -70,6 +70,7 @@ WORLD_RANGES = {
     "physics_rate": FieldRange(60.0, 2000.0, "Hz"), "gravity": FieldRange(0.0, 20.0, "m/s²"),
     "grasp_distance": FieldRange(0.001, 0.2, "m"), "grasp_break_force": FieldRange(1.0, 1e5, "N"),
     "joint_force_scale": FieldRange(0.1, 100.0, ""), "floor_friction": FieldRange(0.05, 3.0, ""),
+    "solver_iterations": FieldRange(1, 10000, "sweeps"),
 }
 """The interval of every numeric :class:`~door_sim_bridge.world.config.WorldConfig` field."""
 

@@ -34,6 +34,9 @@ def test_defaults_are_the_drc_door_and_valid():
     (lambda: WorldConfig(physics_rate=10.0), "WorldConfig.physics_rate", "[60, 2000] Hz"),
     (lambda: WorldConfig(seed=-1), "WorldConfig.seed", "[0, 2147483647]"),
     (lambda: WorldConfig(seed=1.5), "WorldConfig.seed", "integer"),
+    (lambda: WorldConfig(solver_iterations=0), "WorldConfig.solver_iterations", "[1, 10000] sweeps"),
+    (lambda: WorldConfig(solver_iterations=50.5), "WorldConfig.solver_iterations", "integer"),
+    (lambda: WorldConfig(contact_solver="dantzig"), "WorldConfig.contact_solver", "sequential_impulse, dantzig"),
     (lambda: WindConfig(amplitude=-1.0), "WindConfig.amplitude", "[0, 100] N·m"),
     (lambda: ExecutionConfig(step_duration=0.0), "ExecutionConfig.step_duration", "s"),
     (lambda: DoorConfig(opening="push"), "DoorConfig.opening", "push, pull"),
@@ -118,3 +121,21 @@ def test_the_bridge_maps_its_grasp_model_onto_the_world_and_refuses_an_unknown_o
     assert rigid.grasp_model is GraspModel.RIGID
     with pytest.raises(ParameterRangeError, match="grasp_model"):
         validate_all(BRIDGE_PARAMETERS, {"grasp_model": "ball"})
+
+
+def test_the_bridge_maps_its_contact_solver_onto_the_world_and_refuses_an_unknown_one():
+    from door_contract.errors import ParameterRangeError
+    from door_contract.parameters import validate_all
+    from door_sim_bridge.parameters import BRIDGE_PARAMETERS
+    from door_sim_bridge.world import ContactSolver
+    from door_sim_bridge.world_parameters import world_config
+
+    default = world_config(validate_all(BRIDGE_PARAMETERS, {}))
+    assert (default.contact_solver, default.solver_iterations) == (WorldConfig().contact_solver,
+                                                                   WorldConfig().solver_iterations)
+    direct = world_config(validate_all(BRIDGE_PARAMETERS, {"contact_solver": "dantzig", "solver_iterations": 80}))
+    assert (direct.contact_solver, direct.solver_iterations) == (ContactSolver.DANTZIG, 80)
+    with pytest.raises(ParameterRangeError, match="contact_solver"):
+        validate_all(BRIDGE_PARAMETERS, {"contact_solver": "pgs"})
+    with pytest.raises(ParameterRangeError, match="solver_iterations"):
+        validate_all(BRIDGE_PARAMETERS, {"solver_iterations": 0})

@@ -9,6 +9,7 @@ doors open towards +x (details in :mod:`door_sim_bridge.world.door`). Start with
 from door_sim_bridge.world.camera import CameraFrame
 from door_sim_bridge.world.config import (
                                           CameraConfig,
+                                          ContactSolver,
                                           DoorConfig,
                                           ExecutionConfig,
                                           GraspModel,
@@ -23,7 +24,7 @@ from door_sim_bridge.world.grasp import GraspResult
 from door_sim_bridge.world.robot import JointLimit, JointStates
 from door_sim_bridge.world.world import DoorWorld, EventKind, SimEvent
 
-__all__ = ["HANDLE_JOINT", "HINGE_JOINT", "CameraConfig", "CameraFrame", "DoorConfig", "DoorGroundTruth",
+__all__ = ["HANDLE_JOINT", "HINGE_JOINT", "CameraConfig", "CameraFrame", "ContactSolver", "DoorConfig", "DoorGroundTruth",
            "DoorPart", "DoorState", "DoorWorld", "EventKind", "ExecutionConfig",
            "GraspModel", "GraspResult", "JointLimit", "RobotMode", "JointStates", "RobotVisuals", "SimEvent",
            "StanceConfig", "WindConfig", "WorldConfig"]

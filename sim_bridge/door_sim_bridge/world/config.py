@@ -65,6 +65,26 @@ class GraspModel(str, Enum):
     lever; an estimate 1 cm or 1.5° off held the wrist 0.1-0.25 rad from its goal (issue #11)."""
 
 
+class ContactSolver(str, Enum):
+    """The algorithm PyBullet solves its constraints with each step (joint motors, contacts, grasps).
+
+    Under either, a stance leg can give way at lift-off (issue #11, stop 26): the stance ankle
+    roll's motor applies 0-7 N·m of its 100 N·m while its error grows to 0.27 rad and the sole's
+    edge sinks 45 mm into the floor, the pelvis 4 cm down in 0.2 s. That is the constraint solver
+    short of convergence, not the motor's limit.
+    """
+
+    SEQUENTIAL_IMPULSE = "sequential_impulse"
+    """PyBullet's default (projected Gauss-Seidel), ``solver_iterations`` sweeps per step (the
+    default). 50 sweeps: the lift-off dip; 400 sweeps (2.7× the CPU) removed it from one
+    replayed approach walk but not from the push passage."""
+    DANTZIG = "dantzig"
+    """A direct (pivoting) LCP solver, at most ``solver_iterations`` pivots: it removed the dip
+    from the replayed approach walk at the iterative solver's cost, but in the passage rig the
+    robot fell as often (push door from 2.5 m: 0/4) and a pull door's tuck missed its goal by
+    0.26-0.28 rad (arm_left_6)."""
+
+
 class RobotVisuals(str, Enum):
     """Which robot links the camera renders (TinyRenderer cost grows with mesh triangles)."""
 
@@ -289,6 +309,8 @@ class WorldConfig:
     stabilizer: StabilizerOptions = field(default_factory=StabilizerOptions)
     fall: FallConfig = field(default_factory=FallConfig)
     floor_friction: float = 1.0  # Coulomb coefficient between soles and floor
+    contact_solver: ContactSolver = ContactSolver.SEQUENTIAL_IMPULSE
+    solver_iterations: int = 50  # sweeps per step of the iterative solver (and the direct one's cap)
     posture_overrides: tuple[tuple[str, float], ...] = ()  # (joint, rad) over the nominal posture
 
     def __post_init__(self) -> None:
@@ -300,9 +322,10 @@ class WorldConfig:
                            ("stabilizer", StabilizerOptions), ("fall", FallConfig)):
             if not isinstance(getattr(self, name), kind):
                 raise SimulationError(f"WorldConfig.{name} must be a {kind.__name__}")
-        check_ranges(self, WORLD_RANGES, integers=("seed", "grasp_break_steps"))
+        check_ranges(self, WORLD_RANGES, integers=("seed", "grasp_break_steps", "solver_iterations"))
         _require_enum("WorldConfig", "robot_mode", self.robot_mode, RobotMode)
         _require_enum("WorldConfig", "grasp_model", self.grasp_model, GraspModel)
+        _require_enum("WorldConfig", "contact_solver", self.contact_solver, ContactSolver)
         self._check_overrides()
 
     def _check_overrides(self) -> None:

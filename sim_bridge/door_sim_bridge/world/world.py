@@ -40,7 +40,7 @@ from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.world.balance import BalanceLoop
 from door_sim_bridge.world.camera import CameraFrame, HeadCamera, optical_offset
 from door_sim_bridge.world.client import PhysicsClient
-from door_sim_bridge.world.config import RobotMode, StanceConfig, WorldConfig
+from door_sim_bridge.world.config import ContactSolver, RobotMode, StanceConfig, WorldConfig
 from door_sim_bridge.world.door import DoorGroundTruth, DoorPart, DoorState, LatchEvent, SimDoor
 from door_sim_bridge.world.grasp import GraspController, GraspResult
 from door_sim_bridge.world.hardware import make_floor
@@ -50,6 +50,8 @@ from door_sim_bridge.world.transforms import invert, is_rigid
 
 SOLE_CLEARANCE = 0.0005  # m between the lowest sole and the floor when the robot is placed
 LEAF_CLOSED = 0.03  # rad; a leaf nearer its frame than this holds a hand only through its lever
+SOLVER_TYPES = {ContactSolver.DANTZIG: pybullet.CONSTRAINT_SOLVER_LCP_DANTZIG,
+                ContactSolver.SEQUENTIAL_IMPULSE: pybullet.CONSTRAINT_SOLVER_LCP_SI}
 
 
 class EventKind(str, Enum):
@@ -135,7 +137,9 @@ class DoorWorld:
             self._client.changeDynamics(self.robot.body, carrier, lateralFriction=friction)
 
     def _configure_physics(self) -> None:
-        self._client.setPhysicsEngineParameter(fixedTimeStep=self.config.time_step, useSplitImpulse=0)
+        self._client.setPhysicsEngineParameter(fixedTimeStep=self.config.time_step, useSplitImpulse=0,
+                                               numSolverIterations=self.config.solver_iterations,
+                                               constraintSolverType=SOLVER_TYPES[self.config.contact_solver])
         self._client.setGravity(0.0, 0.0, -self.config.gravity)
         self._client.setAdditionalSearchPath(str(cmeel_share_dir()))
 
