@@ -17,7 +17,7 @@ from door_bringup.passage_rig import (
     stand_world,
 )
 from door_contract.vocabulary import DoorOpening, HingeSide, Motion, WalkGoal, grasp_hand
-from door_sim_bridge.world import DoorConfig
+from door_sim_bridge.world import ContactSolver, DoorConfig
 
 
 def test_the_doors_are_opened_in_the_fsms_order():
@@ -149,3 +149,19 @@ def test_an_estimate_error_outside_its_range_is_refused(bounds, capsys):
     with pytest.raises(SystemExit) as stopped:
         main(["--estimate-error", *bounds])
     assert stopped.value.code == 2 and "--estimate-error" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(("arguments", "field"), [(["--solver-iterations", "0"], "solver_iterations"),
+                                                 (["--physics-rate", "10"], "physics_rate"),
+                                                 (["--contact-solver", "pgs"], "--contact-solver")])
+def test_physics_outside_the_sims_ranges_is_refused_naming_it(arguments, field, capsys):
+    with pytest.raises(SystemExit) as stopped:
+        main(arguments)
+    assert stopped.value.code == 2 and field in capsys.readouterr().err
+
+
+def test_the_physics_options_reach_the_world_they_run_in():
+    physics = {"physics_rate": 480.0, "contact_solver": ContactSolver.DANTZIG, "solver_iterations": 80}
+    with stand_world(DoorConfig(), physics=physics) as world:
+        assert (world.config.physics_rate, world.config.contact_solver, world.config.solver_iterations) == (
+            480.0, ContactSolver.DANTZIG, 80)

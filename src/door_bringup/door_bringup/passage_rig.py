@@ -35,6 +35,8 @@ import sys
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from enum import Enum
+from types import MappingProxyType
+from typing import Any
 
 import numpy as np
 
@@ -48,8 +50,9 @@ from door_fsm.wiring import WiringError, success_sequence
 from door_fsm.work import STATE_WORK, WorkKind
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
+from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import ExecutionResult, FootstepExecution, TrajectoryExecution
-from door_sim_bridge.world import DoorConfig, DoorWorld, StanceConfig, WindConfig, WorldConfig
+from door_sim_bridge.world import ContactSolver, DoorConfig, DoorWorld, StanceConfig, WindConfig, WorldConfig
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import MotionLibrary
@@ -173,18 +176,20 @@ def erroneous_estimate(estimate: DoorEstimate, shift: np.ndarray, yaw: float) ->
 
 def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0, 0.0),
                 robot: str = "talos", parameters: Mapping[str, object] = NODE_DEFAULTS,
-                error: tuple[np.ndarray, float] = (np.zeros(3), 0.0)) -> DoorWorld:
+                error: tuple[np.ndarray, float] = (np.zeros(3), 0.0),
+                physics: Mapping[str, Any] = MappingProxyType({})) -> DoorWorld:
     """``robot`` at the stand pose the footstep planner (with ``parameters``) chooses for
     ``door`` as estimated with ``error`` (:func:`erroneous_estimate`), plus ``offset`` (along
     the door normal, along the wall, yaw), standing on the floor: facing the door, or sideways
-    beside a push door's opening (``push_passage``)."""
+    beside a push door's opening (``push_passage``). ``physics`` are :class:`WorldConfig` fields
+    (``physics_rate``, ``contact_solver``, ``solver_iterations``) over their defaults."""
     with DoorWorld(WorldConfig(robot_profile=robot, door=door)) as probe:
         estimate = erroneous_estimate(perfect_estimate(probe), *error)
     settings = GoalSettings.from_parameters(parameters)
     options = planner_options(robot, parameters)
     geometry = door_geometry_from_estimate(estimate, door.opening, 0.0, settings.handle_standoff)
     stand = stand_pose(geometry, options, settings)
-    return DoorWorld(WorldConfig(robot_profile=robot, door=door, stance=StanceConfig(
+    return DoorWorld(WorldConfig(robot_profile=robot, door=door, **physics, stance=StanceConfig(
         distance=-stand.x + offset[0], lateral_offset=stand.y + offset[1], yaw=stand.yaw + offset[2])))
 
 
@@ -331,14 +336,15 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
              planner_parameters: Mapping[str, object] | None = None, walk_from: float | None = None,
              estimate_error: EstimateError = EstimateError(), door_shape: DoorShape = DoorShape(),
-             wind: float = 0.0) -> PassageRun:
+             wind: float = 0.0, physics: Mapping[str, Any] = MappingProxyType({})) -> PassageRun:
     """One door for the robot of ``kinematics``, the passage planned with the footstep planner
     node's defaults updated by ``planner_parameters``. The robot starts at the stand pose
     jittered by ``trial`` (0: none), or, with ``walk_from`` (m), that far in front of the door
     and walks to the stand pose first, as in the graph (``trial`` > 0: up to ±0.3 m aside and
     ±0.3 rad turned). Every plan uses the ground truth with ``estimate_error`` drawn for the
     trial (its own random stream: the jitter does not change with it). ``door_shape`` is the
-    leaf's width and the lever's height (the DRC door's 0.914 m and 0.91 m by default); ``wind`` (N·m) is the amplitude of the wind on the hinge, as the Monte-Carlo's."""
+    leaf's width and the lever's height (the DRC door's 0.914 m and 0.91 m by default); ``wind`` (N·m) is the amplitude of the wind on the hinge, as the Monte-Carlo's; ``physics``
+    as :func:`stand_world`'s."""
     rng = np.random.default_rng(trial)
     error = estimate_error.drawn(np.random.default_rng([trial, 1]))
     robot = kinematics.profile.name
@@ -347,10 +353,10 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
     peaks: dict[str, float] = {}
     if walk_from is None:
         jitter = np.zeros(3) if trial == 0 else rng.uniform(-1.0, 1.0, 3) * JITTER
-        world = stand_world(door, (jitter[0], jitter[1], jitter[2]), robot, parameters, error)
+        world = stand_world(door, (jitter[0], jitter[1], jitter[2]), robot, parameters, error, physics)
     else:
         aside, turned = (0.0, 0.0) if trial == 0 else tuple(rng.uniform(-0.3, 0.3, 2))
-        world = DoorWorld(WorldConfig(robot_profile=robot, door=door,
+        world = DoorWorld(WorldConfig(robot_profile=robot, door=door, **physics,
                                       stance=StanceConfig(distance=walk_from, lateral_offset=aside, yaw=turned)))
     with world:
         estimate = erroneous_estimate(perfect_estimate(world), *error)
@@ -366,6 +372,18 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
         return PassageRun(robot, opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle,
                           strikes)
+
+
+def physics_overrides(parser: argparse.ArgumentParser, args: argparse.Namespace) -> dict[str, Any]:
+    """The :class:`WorldConfig` physics fields the command line sets, checked by the config itself."""
+    fields = {"physics_rate": args.physics_rate, "solver_iterations": args.solver_iterations,
+              "contact_solver": None if args.contact_solver is None else ContactSolver(args.contact_solver)}
+    physics = {name: value for name, value in fields.items() if value is not None}
+    try:
+        WorldConfig(**physics)
+    except SimulationError as error:
+        parser.error(str(error))
+    return physics
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -393,6 +411,12 @@ def main(argv: Sequence[str] | None = None) -> int:
                         help="wind on the hinge, amplitude in N·m (0-3, as the Monte-Carlo's); default none")
     parser.add_argument("--tuck-at", type=float, default=NODE_DEFAULTS["tuck_at"],
                         help="the footstep planner's tuck_at: the doorway walk ends this far before the door plane (m)")
+    parser.add_argument("--physics-rate", type=float, default=None, metavar="HZ",
+                        help="the sim's physics rate (sim_bridge.physics_rate); default the sim's")
+    parser.add_argument("--contact-solver", choices=[c.value for c in ContactSolver], default=None,
+                        help="PyBullet's constraint solver (sim_bridge.contact_solver); default the sim's")
+    parser.add_argument("--solver-iterations", type=int, default=None, metavar="N",
+                        help="sweeps per step of the iterative solver (sim_bridge.solver_iterations)")
     args = parser.parse_args(argv)
     if args.trials < 1:
         parser.error("--trials must be at least 1")
@@ -413,6 +437,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error(f"--estimate-error must be within [0, 10] cm and [0, 10] degrees, got {args.estimate_error}")
     estimate_error = EstimateError(args.estimate_error[0] / 100.0, np.radians(args.estimate_error[1]))
     door_shape = DoorShape(args.door_width, args.handle_height)
+    physics = physics_overrides(parser, args)
     check_robot(parser, args.robot)
     kinematics = RobotKinematics(load_profile(args.robot))
     runs = []
@@ -420,7 +445,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         for hinge in args.hinges:
             for trial in range(args.trials):
                 runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics, overrides,
-                                     args.walk_from, estimate_error, door_shape, args.wind))
+                                     args.walk_from, estimate_error, door_shape, args.wind, physics))
                 print(runs[-1].line(), flush=True)
     through = sum(run.stage == WALKED_THROUGH and run.status == "success" for run in runs)
     fell = sum(run.status == OutcomeStatus.FELL.value for run in runs)
