@@ -5,7 +5,15 @@ from __future__ import annotations
 from typing import Any
 
 from door_contract.vocabulary import DoorOpening, HingeSide
-from door_sim_bridge.world import CameraConfig, ContactSolver, DoorConfig, GraspModel, StanceConfig, WindConfig, WorldConfig
+from door_sim_bridge.world import (
+    CameraConfig,
+    ContactSolver,
+    DoorConfig,
+    GraspModel,
+    StanceConfig,
+    WindConfig,
+    WorldConfig,
+)
 from door_sim_bridge.world_ranges import COLOUR_FIELDS
 
 __all__ = ["world_config"]

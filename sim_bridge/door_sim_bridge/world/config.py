@@ -68,10 +68,13 @@ class GraspModel(str, Enum):
 class ContactSolver(str, Enum):
     """The algorithm PyBullet solves its constraints with each step (joint motors, contacts, grasps).
 
-    Under either, a stance leg can give way at lift-off (issue #11, stop 26): the stance ankle
-    roll's motor applies 0-7 N·m of its 100 N·m while its error grows to 0.27 rad and the sole's
-    edge sinks 45 mm into the floor, the pelvis 4 cm down in 0.2 s. That is the constraint solver
-    short of convergence, not the motor's limit.
+    Under either, a stance leg can give way at lift-off (issue #11, stop 26). The pattern's ZMP
+    leaves the feet's midpoint for the stance sole in one 0.06 s QP step, the CoM 5.4 cm beside
+    that sole; under the iterative solver the stance ankle roll's motor then applies 0-7 of its
+    100 N·m while its error grows to 0.27 rad and the sole's edge sinks 45 mm into the floor (a
+    solver short of convergence, not the motor's limit); under the direct one the hip and knee
+    motors of that leg reach their limits (160, 300 N·m) instead. Either way the pelvis drops
+    3-5 cm in 0.2 s.
     """
 
     SEQUENTIAL_IMPULSE = "sequential_impulse"
