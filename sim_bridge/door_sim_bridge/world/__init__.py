@@ -21,10 +21,11 @@ from door_sim_bridge.world.config import (
 )
 from door_sim_bridge.world.door import HANDLE_JOINT, HINGE_JOINT, DoorGroundTruth, DoorPart, DoorState
 from door_sim_bridge.world.grasp import GraspResult
+from door_sim_bridge.world.hardware import SoleContact
 from door_sim_bridge.world.robot import JointLimit, JointStates
 from door_sim_bridge.world.world import DoorWorld, EventKind, SimEvent
 
 __all__ = ["HANDLE_JOINT", "HINGE_JOINT", "CameraConfig", "CameraFrame", "ContactSolver", "DoorConfig", "DoorGroundTruth",
            "DoorPart", "DoorState", "DoorWorld", "EventKind", "ExecutionConfig",
-           "GraspModel", "GraspResult", "JointLimit", "RobotMode", "JointStates", "RobotVisuals", "SimEvent",
+           "GraspModel", "GraspResult", "JointLimit", "RobotMode", "JointStates", "RobotVisuals", "SimEvent", "SoleContact",
            "StanceConfig", "WindConfig", "WorldConfig"]

@@ -5,6 +5,9 @@
 * **External wrench** from the door: every contact between a robot link and the door's body
   (leaf, frame, handle), normal and friction forces, plus the hands' wrist force sensors. Summed into one force and a force-weighted point of application — what the
   stabiliser feeds forward (:mod:`door_sim_bridge.walking.stabilizer`).
+* **Sole contact**: the floor's normal force on one sole and how deep the sole has sunk into
+  the floor (a rigid floor that lets a sole sink centimetres is a constraint solver short of
+  convergence: the lift-off dip of issue #11).
 * **Falls**: the base below a fraction of its nominal height, or tilted too far.
 """
 
@@ -12,6 +15,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
+from dataclasses import dataclass
 
 import numpy as np
 import pybullet
@@ -39,6 +43,23 @@ def centre_of_pressure(client: PhysicsClient, robot: int, floor: int) -> np.ndar
         return None
     centre: np.ndarray = sum(contact[9] * np.array(contact[5][:2]) for contact in contacts) / total
     return centre
+
+
+@dataclass(frozen=True)
+class SoleContact:
+    """The floor under one sole."""
+
+    load: float  # N, sum of the normal forces
+    sinking: float  # m, the deepest penetration of the sole into the floor (0: on or above it)
+    points: int  # contact points
+
+
+def sole_contact(client: PhysicsClient, robot: int, floor: int, link: int) -> SoleContact:
+    """The floor's contact with ``link`` (a sole's carrier link): PyBullet's contact distance
+    is negative where the bodies overlap."""
+    contacts = client.getContactPoints(bodyA=robot, bodyB=floor, linkIndexA=link)
+    depth = min((contact[8] for contact in contacts), default=0.0)
+    return SoleContact(float(sum(contact[9] for contact in contacts)), float(max(-depth, 0.0)), len(contacts))
 
 
 def floor_links(client: PhysicsClient, robot: int, floor: int) -> set[int]:

@@ -43,7 +43,7 @@ from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import ContactSolver, RobotMode, StanceConfig, WorldConfig
 from door_sim_bridge.world.door import DoorGroundTruth, DoorPart, DoorState, LatchEvent, SimDoor
 from door_sim_bridge.world.grasp import GraspController, GraspResult
-from door_sim_bridge.world.hardware import make_floor
+from door_sim_bridge.world.hardware import SoleContact, make_floor, sole_contact
 from door_sim_bridge.world.robot import JointLimit, JointStates, SimRobot
 from door_sim_bridge.world.robot_urdf import sole_placement_link
 from door_sim_bridge.world.transforms import invert, is_rigid
@@ -359,6 +359,13 @@ class DoorWorld:
             pose = self.robot.link_pose(link)
             placements[side] = FootPlacement(side, float(pose[0, 3]), float(pose[1, 3]), yaw_of(pose))
         return placements
+
+    def sole_contacts(self) -> dict[Side, SoleContact]:
+        """The floor under each sole now (physical robot only: a kinematic one has no floor)."""
+        if self._floor is None:
+            raise SimulationError("sole contacts need the physical robot (the kinematic one has no floor)")
+        return {side: sole_contact(self._client, self.robot.body, self._floor, sole_placement_link(self.robot, link))
+                for side, link in self.profile.feet.items()}
 
     def _feet_midpoint(self) -> np.ndarray:
         feet = self.foot_placements()
