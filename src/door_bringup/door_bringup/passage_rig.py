@@ -40,6 +40,7 @@ from typing import Any
 
 import numpy as np
 
+from door_bringup.fall_trace import FallTrace
 from door_bringup.robot_option import add_robot_argument, check_robot
 from door_contract.errors import ParameterRangeError
 from door_contract.parameters import validate_all
@@ -107,6 +108,7 @@ class PassageRun:
     reason: str
     door_angle: float  # rad, at the end
     strikes: tuple[tuple[str, float], ...]  # (robot link | door part, peak normal force N), hardest first
+    fall_trace: tuple[str, ...] = ()  # FallTrace.report() of a fall traced with --trace-falls
 
     def line(self) -> str:
         strikes = ", ".join(f"{name} {force:.0f} N" for name, force in self.strikes) or "none"
@@ -225,11 +227,13 @@ def opening_sequence(opening: DoorOpening) -> tuple[Motion | HandCommand, ...]:
 
 
 def run_recording(world: DoorWorld, execution: FootstepExecution | TrajectoryExecution,
-                  peaks: dict[str, float]) -> ExecutionResult | None:
+                  peaks: dict[str, float], trace: FallTrace | None = None) -> ExecutionResult | None:
     """Step ``execution`` to its end, keeping the peak normal force of every robot-door contact
-    in ``peaks``; its result (None: it ended without one)."""
+    in ``peaks`` (and sampling ``trace`` each step); its result (None: it ended without one)."""
     while not execution.command():
         world.step()
+        if trace is not None:
+            trace.step()
         for name, force in world.door_contact_forces().items():
             peaks[name] = max(peaks.get(name, 0.0), force)
     return execution.result
@@ -242,7 +246,7 @@ def opening_hand(world: DoorWorld, estimate: DoorEstimate) -> Side:
 
 
 def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate,
-              peaks: dict[str, float], hand: Side) -> tuple[str, str, str]:
+              peaks: dict[str, float], hand: Side, trace: FallTrace | None = None) -> tuple[str, str, str]:
     """Run the opening sequence with ``hand``; (stage, status, reason) of the step it stopped
     in, or of the last; the contacts' peak forces go into ``peaks``."""
     opening = world.config.door.opening
@@ -253,7 +257,8 @@ def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstim
             if not answer.success:
                 return step.value, "failure", answer.message
             continue
-        status, reason, door_angle = run_motion(world, kinematics, estimate, step, library, door_angle, peaks, hand)
+        status, reason, door_angle = run_motion(world, kinematics, estimate, step, library, door_angle, peaks, hand,
+                                                trace)
         if status != OutcomeStatus.SUCCESS.value:
             return step.value, status, reason
     return Motion.READY_TO_WALK.value, "success", ""
@@ -261,7 +266,7 @@ def open_door(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstim
 
 def run_motion(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEstimate, motion: Motion,
                library: MotionLibrary, door_angle: float, peaks: dict[str, float],
-               hand: Side) -> tuple[str, str, float]:
+               hand: Side, trace: FallTrace | None = None) -> tuple[str, str, float]:
     """Plan ``motion`` from the measured posture, as the trajectory optimiser node does, for
     ``hand`` (the other arm's motions for the other), and execute it: (status, reason, the
     door angle the plan ends at)."""
@@ -270,7 +275,7 @@ def run_motion(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEsti
     plan = library.plan(motion, setup, setup.chain.chain_of(setup.chain.body_q), Backend.SQP)
     if not plan.succeeded or plan.path is None:
         return "planning failed", plan.result.message, door_angle
-    result = run_recording(world, TrajectoryExecution.from_joint_path(world, plan.path), peaks)
+    result = run_recording(world, TrajectoryExecution.from_joint_path(world, plan.path), peaks, trace)
     if result is None:
         return "failure", "the motion ended without an outcome", door_angle
     return result.status.value, result.reason, float(plan.final_door[0])
@@ -292,7 +297,8 @@ def _walk_or_motion(target: WalkGoal | Motion | None) -> WalkGoal | Motion:
 
 
 def walk_through(world: DoorWorld, estimate: DoorEstimate, kinematics: RobotKinematics,
-                 parameters: Mapping[str, object], hand: Side) -> tuple[str, str, str, dict[str, float]]:
+                 parameters: Mapping[str, object], hand: Side,
+                 trace: FallTrace | None = None) -> tuple[str, str, str, dict[str, float]]:
     """The passage as the FSM runs it (:func:`passage_steps`), each walk planned from the
     measured feet with the footstep planner node's calls and ``parameters``, each motion with
     the motion library for ``hand`` (the opening's; the FSM names it in its requests):
@@ -304,9 +310,9 @@ def walk_through(world: DoorWorld, estimate: DoorEstimate, kinematics: RobotKine
     for step in passage_steps(world.config.door.opening):
         if isinstance(step, Motion):
             status, reason, _ = run_motion(world, kinematics, estimate, step, library,
-                                           world.door_state().hinge_angle, peaks, hand)
+                                           world.door_state().hinge_angle, peaks, hand, trace)
         else:
-            status, reason = _walk(world, estimate, step, planners, options, settings, peaks)
+            status, reason = _walk(world, estimate, step, planners, options, settings, peaks, trace)
         if status != OutcomeStatus.SUCCESS.value:
             return (WALKED_THROUGH if step is WalkGoal.THROUGH else f"walk through: {step.value}"), status, reason, peaks
     return WALKED_THROUGH, OutcomeStatus.SUCCESS.value, "", peaks
@@ -319,7 +325,8 @@ def measured_snapshot(world: DoorWorld, estimate: DoorEstimate) -> Snapshot:
 
 
 def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: WalkPlanners,
-          options: FootstepPlannerOptions, settings: GoalSettings, peaks: dict[str, float]) -> tuple[str, str]:
+          options: FootstepPlannerOptions, settings: GoalSettings, peaks: dict[str, float],
+          trace: FallTrace | None = None) -> tuple[str, str]:
     """Plan the walk to ``goal`` from the measured state and walk it, recording peak contact
     forces: (status, reason)."""
     request = FootstepRequest(0, goal, world.config.door.opening, world.door_state().hinge_angle)
@@ -327,7 +334,8 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
     result, _ = planners.plan(problem, options_for_problem(problem, goal, options))
     if not result.succeeded or result.plan is None:
         return "planning failed", f"{result.outcome.value}: {result.reason}"
-    walked = run_recording(world, FootstepExecution(world, contract_footsteps(problem.start, result.plan)), peaks)
+    walked = run_recording(world, FootstepExecution(world, contract_footsteps(problem.start, result.plan)), peaks,
+                           trace)
     if walked is None:
         return "failure", "the walk ended without an outcome"
     return walked.status.value, walked.reason
@@ -336,7 +344,8 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
 def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: RobotKinematics,
              planner_parameters: Mapping[str, object] | None = None, walk_from: float | None = None,
              estimate_error: EstimateError = EstimateError(), door_shape: DoorShape = DoorShape(),
-             wind: float = 0.0, physics: Mapping[str, Any] = MappingProxyType({})) -> PassageRun:
+             wind: float = 0.0, physics: Mapping[str, Any] = MappingProxyType({}),
+             trace_falls: bool = False) -> PassageRun:
     """One door for the robot of ``kinematics``, the passage planned with the footstep planner
     node's defaults updated by ``planner_parameters``. The robot starts at the stand pose
     jittered by ``trial`` (0: none), or, with ``walk_from`` (m), that far in front of the door
@@ -344,7 +353,7 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
     ±0.3 rad turned). Every plan uses the ground truth with ``estimate_error`` drawn for the
     trial (its own random stream: the jitter does not change with it). ``door_shape`` is the
     leaf's width and the lever's height (the DRC door's 0.914 m and 0.91 m by default); ``wind`` (N·m) is the amplitude of the wind on the hinge, as the Monte-Carlo's; ``physics``
-    as :func:`stand_world`'s."""
+    as :func:`stand_world`'s. With ``trace_falls`` a fall comes with a :class:`FallTrace` report."""
     rng = np.random.default_rng(trial)
     error = estimate_error.drawn(np.random.default_rng([trial, 1]))
     robot = kinematics.profile.name
@@ -359,19 +368,21 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
         world = DoorWorld(WorldConfig(robot_profile=robot, door=door, **physics,
                                       stance=StanceConfig(distance=walk_from, lateral_offset=aside, yaw=turned)))
     with world:
+        trace = FallTrace(world) if trace_falls else None
         estimate = erroneous_estimate(perfect_estimate(world), *error)
         stage, status, reason = WALK_TO_DOOR, "success", ""
         if walk_from is not None:
-            status, reason = _walk(world, estimate, WalkGoal.STAND, WalkPlanners(),
-                                   planner_options(robot, parameters), GoalSettings.from_parameters(parameters), peaks)
+            status, reason = _walk(world, estimate, WalkGoal.STAND, WalkPlanners(), planner_options(robot, parameters),
+                                   GoalSettings.from_parameters(parameters), peaks, trace)
         if status == "success":
             hand = opening_hand(world, estimate)  # at the stand pose, as the approach picks it
-            stage, status, reason = open_door(world, kinematics, estimate, peaks, hand)
+            stage, status, reason = open_door(world, kinematics, estimate, peaks, hand, trace)
             if status == "success":  # the walk's contacts are the ones that matter then
-                stage, status, reason, peaks = walk_through(world, estimate, kinematics, parameters, hand)
+                stage, status, reason, peaks = walk_through(world, estimate, kinematics, parameters, hand, trace)
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
+        fell = trace is not None and status == OutcomeStatus.FELL.value
         return PassageRun(robot, opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle,
-                          strikes)
+                          strikes, trace.report() if fell and trace is not None else ())
 
 
 def physics_overrides(parser: argparse.ArgumentParser, args: argparse.Namespace) -> dict[str, Any]:
@@ -411,6 +422,9 @@ def main(argv: Sequence[str] | None = None) -> int:
                         help="wind on the hinge, amplitude in N·m (0-3, as the Monte-Carlo's); default none")
     parser.add_argument("--tuck-at", type=float, default=NODE_DEFAULTS["tuck_at"],
                         help="the footstep planner's tuck_at: the doorway walk ends this far before the door plane (m)")
+    parser.add_argument("--trace-falls", action="store_true",
+                        help="after a fall, print the stance leg's samples around the first pelvis dip "
+                             "(door_bringup.fall_trace)")
     parser.add_argument("--physics-rate", type=float, default=None, metavar="HZ",
                         help="the sim's physics rate (sim_bridge.physics_rate); default the sim's")
     parser.add_argument("--contact-solver", choices=[c.value for c in ContactSolver], default=None,
@@ -445,8 +459,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         for hinge in args.hinges:
             for trial in range(args.trials):
                 runs.append(run_door(DoorOpening(opening), HingeSide(hinge), trial, kinematics, overrides,
-                                     args.walk_from, estimate_error, door_shape, args.wind, physics))
-                print(runs[-1].line(), flush=True)
+                                     args.walk_from, estimate_error, door_shape, args.wind, physics,
+                                     args.trace_falls))
+                print("\n    ".join((runs[-1].line(), *runs[-1].fall_trace)), flush=True)
     through = sum(run.stage == WALKED_THROUGH and run.status == "success" for run in runs)
     fell = sum(run.status == OutcomeStatus.FELL.value for run in runs)
     print(f"through the doorway: {through}/{len(runs)}; fell: {fell}/{len(runs)}")
