@@ -1,10 +1,11 @@
-"""Robots other than TALOS stand and walk physically with the same walking controller.
+"""Every walking robot stands and walks physically with the same walking controller.
 
 Everything robot-specific comes from the profile (sole frames, foot size, posture) or from
-the model; the figures are TALOS's (test_sim_walking.py): standing 10 s drifts < 1 cm, ten
+the model; the figures are issue #11's, set for TALOS: standing 10 s drifts < 1 cm, ten
 strides end within 3 cm of the plan, a 30° turn within 3°. The stride is the robot's own
-(``STRIDES``: scaled from TALOS's 0.2 m by leg length). One world per robot: the robot
-stands, then walks, then turns, as the tests run in order.
+(``STRIDES``: TALOS's 0.2 m, the others' scaled from it by leg length). One world per robot:
+the robot stands, then walks, then turns, as the tests run in order. TALOS's other walking
+behaviour (stops, shoves, held arms, bad plans) is in test_sim_walking.py.
 
 Atlas v4 does not walk (its profile's comment and the README say why), so it is not listed.
 """
@@ -22,7 +23,7 @@ from door_sim_bridge.execution import FootstepExecution
 from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
 
 START = StanceConfig(distance=3.5)
-STRIDES = {"g1": 0.15, "drc_hubo": 0.2}  # m: G1's legs (hip to sole 0.69 m) are 0.8 × TALOS's
+STRIDES = {"talos": 0.2, "g1": 0.15, "drc_hubo": 0.2}  # m: G1's legs (hip to sole 0.69 m) are 0.8 × TALOS's
 SHARED_DATA = {"drc_hubo"}  # URDFs read from ../shared/data (tests skip without it)
 
 
