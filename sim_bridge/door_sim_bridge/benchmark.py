@@ -5,7 +5,8 @@
 ours / target (≥ 1 meets the target). Times are CPU seconds of this process (one core), so
 other programs running on the machine do not distort them. Targets: the physics (robot +
 door, 240 Hz, no camera) at least 5× faster than real time, so a Monte-Carlo campaign and the
-real-time node both have headroom; the head camera at least at the bridge's default
+real-time node both have headroom (also under the other physics settings tried against the
+lift-off dip of issue #11: 400 solver sweeps, 480 Hz, the direct solver); the head camera at least at the bridge's default
 publishing rate (``CameraConfig.frame_rate_hz``) at the MultiSense SL's 1024×544 and at VGA.
 """
 
@@ -19,7 +20,7 @@ import numpy as np
 
 from door_contract.vocabulary import Side
 from door_sim_bridge.execution import TrajectoryExecution
-from door_sim_bridge.world import CameraConfig, DoorPart, DoorWorld, RobotVisuals, WorldConfig
+from door_sim_bridge.world import CameraConfig, ContactSolver, DoorPart, DoorWorld, RobotVisuals, WorldConfig
 
 PHYSICS_SECONDS = 10.0  # simulated seconds per physics measurement
 CAMERA_FRAMES = 10
@@ -83,6 +84,12 @@ def camera_rate(width: int, height: int, visuals: RobotVisuals = RobotVisuals.AR
         return CAMERA_FRAMES / _timed(lambda: [world.render() for _ in range(CAMERA_FRAMES)])
 
 
+PHYSICS_VARIANTS = (("400 solver sweeps", WorldConfig(solver_iterations=400)),
+                    ("480 Hz", WorldConfig(physics_rate=480.0)),
+                    ("direct (Dantzig) solver", WorldConfig(contact_solver=ContactSolver.DANTZIG)))
+"""Other physics than the default, each measured idle (``sim_bridge`` parameters of the same names)."""
+
+
 def run() -> list[BenchmarkRow]:
     frame_rate = CameraConfig().frame_rate_hz
     with DoorWorld() as world:
@@ -91,6 +98,10 @@ def run() -> list[BenchmarkRow]:
                          idle, "×"),
             BenchmarkRow("physics real-time factor, arm moving + door swinging", "n/a", RTF_TARGET,
                          busy, "×")]
+    for name, config in PHYSICS_VARIANTS:
+        with DoorWorld(config) as world:
+            rows.append(BenchmarkRow(f"physics real-time factor, idle, {name}", "n/a", RTF_TARGET,
+                                     physics_idle(world), "×"))
     for width, height in ((1024, 544), (640, 480)):
         rows.append(BenchmarkRow(f"camera RGB-D {width}×{height} (arms rendered)", "n/a", frame_rate,
                                  camera_rate(width, height), "frames/s"))
