@@ -59,7 +59,7 @@ def sole_contact(client: PhysicsClient, robot: int, floor: int, link: int) -> So
     is negative where the bodies overlap."""
     contacts = client.getContactPoints(bodyA=robot, bodyB=floor, linkIndexA=link)
     depth = min((contact[8] for contact in contacts), default=0.0)
-    return SoleContact(float(sum(contact[9] for contact in contacts)), float(max(-depth, 0.0)), len(contacts))
+    return SoleContact(float(sum(contact[9] for contact in contacts)), float(max(0.0, -depth)), len(contacts))
 
 
 def floor_links(client: PhysicsClient, robot: int, floor: int) -> set[int]:

@@ -101,7 +101,8 @@ class FallTrace:
         states, limits, targets = world.joint_states(), world.joint_limits(), world.joint_targets()
         position = dict(zip(states.names, states.positions))
         effort = dict(zip(states.names, states.efforts))
-        strained = max(((name, abs(effort[name]) / limits[name].effort) for name in self._legs), key=lambda item: item[1])
+        strained = max(((name, abs(effort[name]) / max(limits[name].effort, 1.0)) for name in self._legs),
+                       key=lambda item: item[1])  # a URDF effort of 0 counts as 1 N·m
         lagging = max(((name, targets[name] - position[name]) for name in self._legs), key=lambda item: abs(item[1]))
         return StanceSample(world.time, float(world.base_pose()[2, 3]), com_in_sole,
                             {side: contact.load for side, contact in contacts.items()},
