@@ -11,7 +11,9 @@ Every control tick (every physics step) it turns references into joint position 
     planned; the trajectory optimiser has kept its CoM inside the support polygon), or
   - *walking*: the CoM of the LIPM walking pattern (:mod:`door_sim_bridge.walking.gait`)
     and the swing foot along its curve;
-  plus, in both, the stabiliser's CoM offset (:mod:`door_sim_bridge.walking.stabilizer`).
+  plus, in both, the stabiliser's CoM offset (:mod:`door_sim_bridge.walking.stabilizer`),
+  and while walking the DCM feedback's (:mod:`door_sim_bridge.walking.dcm`: the measured
+  capture point's error from the pattern's, fed back on the CoM target).
 
 Feet on the ground are held where they are measured and the model is anchored on the measured
 support sole every tick of a single support, so a stance foot that slips does not carry its
@@ -34,6 +36,7 @@ from door_contract.converters.footsteps import FootPlacement
 from door_contract.vocabulary import Foot, Side
 from door_robot.profile import RobotProfile
 from door_sim_bridge.errors import SimulationError
+from door_sim_bridge.walking.dcm import CentreOfMassMotion, DcmFeedback
 from door_sim_bridge.walking.gait import GaitOptions, footstep_sequence, placo_parameters
 from door_sim_bridge.walking.model import PLACO_TRUNK_FRAME, joint_split, load_placo_robot
 from door_sim_bridge.walking.stabilizer import ContactWrench, Stabilizer, StabilizerOptions
@@ -54,6 +57,7 @@ class Measurement:
     cop: np.ndarray | None  # (2,) centre of pressure of the floor contacts, None in the air
     wrench: ContactWrench  # net external force on the robot (door contacts and grasps)
     trunk_rotation: np.ndarray | None = None  # 3×3 base orientation (an IMU), None: not measured
+    centre_of_mass: CentreOfMassMotion | None = None  # the robot's (state estimation), None: not measured
 
 
 def level_frame(frame: np.ndarray) -> np.ndarray:
@@ -91,6 +95,7 @@ class WalkingController:
         self.joints = joint_split(urdf_text, profile.feet)
         self.robot = load_placo_robot(urdf_text, profile)
         self.stabilizer = Stabilizer(stabilizer, self.robot.total_mass() * 9.81)
+        self._dcm = DcmFeedback(stabilizer.dcm_gain, stabilizer.max_dcm_shift)
         self.mode = BalanceMode.STANDING
         self._upper = {name: 0.0 for name in self.joints.upper_body}
         self._trajectory: placo.WPGTrajectory | None = None
@@ -194,6 +199,7 @@ class WalkingController:
         if not trajectory.t_end > 0.0:
             raise SimulationError("the walking pattern generator found no CoM trajectory")
         self._trajectory, self._walk_time, self._stopping = trajectory, 0.0, False
+        self._dcm.start()
         self.steps_planned, self.steps_landed = len(footsteps) - 2, 0
         self.mode, self._support_side, self._anchor_foot = BalanceMode.WALKING, None, Foot.LEFT
         self._tasks.trunk_mode = False
@@ -277,6 +283,9 @@ class WalkingController:
         omega = math.sqrt(9.81 / self._generator_com_height())
         zmp = np.array(trajectory.get_p_world_ZMP(t, omega)[:2])
         offset = self.stabilizer.update(self.dt, zmp, measurement.wrench, measurement.cop, walking=True)
+        if measurement.centre_of_mass is not None:
+            planned = CentreOfMassMotion(np.array(trajectory.get_p_world_CoM(t)), np.array(trajectory.get_v_world_CoM(t)))
+            offset = offset + self._dcm.shift(measurement.centre_of_mass, planned, omega)
         com_task = self._tasks.com_task
         com_task.target_world = np.array(com_task.target_world) + np.array([offset[0], offset[1], 0.0])
         self._track_support(trajectory, t, measurement)

@@ -63,12 +63,17 @@ class StabilizerOptions:
     force_filter_s: float = 0.25  # s, time constant of each of the two low-passes on the feed-forward
     max_force: float = 100.0  # N, the measured force is clipped to this magnitude before the feed-forward
     max_walking_force: float = 40.0  # N, the same while walking (a pushed leaf escapes the hand)
+    # CoM target shift per m of DCM error while walking (door_sim_bridge.walking.dcm). Rig, push
+    # left walked there from 2.5 m, 4 doors: 0 → 0/4 through, 0.5 → 1/4, 1.5 → 3/4 (issue #11)
+    dcm_gain: float = 1.5
+    max_dcm_shift: float = 0.04  # m per axis
 
     def __post_init__(self) -> None:
         check_ranges(self, {"force_deadband": FieldRange(0.0, 0.2, "m"), "cop_deadband": FieldRange(0.0, 0.2, "m"),
                             "cop_gain": FieldRange(0.0, 50.0, "1/s"), "cop_filter_s": FieldRange(0.0, 10.0, "s"),
                             "force_filter_s": FieldRange(0.0, 10.0, "s"), "max_force": FieldRange(0.0, 5000.0, "N"),
                             "max_walking_force": FieldRange(0.0, 5000.0, "N"),
+                            "dcm_gain": FieldRange(0.0, 10.0, ""), "max_dcm_shift": FieldRange(0.0, 0.2, "m"),
                             "leak_time_s": FieldRange(0.05, 100.0, "s"), "max_offset": FieldRange(0.0, 0.2, "m"),
                             "max_rate": FieldRange(0.001, 5.0, "m/s")})
 

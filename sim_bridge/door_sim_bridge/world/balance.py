@@ -17,7 +17,13 @@ from door_contract.vocabulary import Foot, Side
 from door_sim_bridge.walking.controller import BalanceMode, Measurement, WalkingController
 from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import WorldConfig
-from door_sim_bridge.world.hardware import centre_of_pressure, contact_forces, fall_reason, net_wrench
+from door_sim_bridge.world.hardware import (
+    centre_of_mass_motion,
+    centre_of_pressure,
+    contact_forces,
+    fall_reason,
+    net_wrench,
+)
 from door_sim_bridge.world.robot import SimRobot
 
 FOOT_OF_SIDE = {Side.LEFT: Foot.LEFT, Side.RIGHT: Foot.RIGHT}
@@ -39,7 +45,8 @@ class BalanceLoop:
     def measure(self) -> Measurement:
         soles = {FOOT_OF_SIDE[side]: self._robot.link_pose(link) for side, link in self._robot.profile.feet.items()}
         return Measurement(soles, centre_of_pressure(self._client, self._robot.body, self._floor),
-                           net_wrench(self._door_forces()), self._robot.base_pose()[:3, :3])
+                           net_wrench(self._door_forces()), self._robot.base_pose()[:3, :3],
+                           centre_of_mass_motion(self._client, self._robot.body))
 
     def _door_forces(self) -> list[tuple[np.ndarray, np.ndarray]]:
         """Forces on the robot the stabiliser may lean against: every link's contacts with the

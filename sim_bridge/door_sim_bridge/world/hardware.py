@@ -5,6 +5,8 @@
 * **External wrench** from the door: every contact between a robot link and the door's body
   (leaf, frame, handle), normal and friction forces, plus the hands' wrist force sensors. Summed into one force and a force-weighted point of application — what the
   stabiliser feeds forward (:mod:`door_sim_bridge.walking.stabilizer`).
+* **Centre of mass** of the whole robot and its velocity: the mass-weighted mean of the links'
+  inertial frames (what a state estimator gives a real robot's DCM feedback).
 * **Sole contact**: the floor's normal force on one sole and how deep the sole has sunk into
   the floor (a rigid floor that lets a sole sink centimetres is a constraint solver short of
   convergence: the lift-off dip of issue #11).
@@ -20,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 import pybullet
 
+from door_sim_bridge.walking.dcm import CentreOfMassMotion
 from door_sim_bridge.walking.stabilizer import ContactWrench
 from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import FallConfig
@@ -43,6 +46,21 @@ def centre_of_pressure(client: PhysicsClient, robot: int, floor: int) -> np.ndar
         return None
     centre: np.ndarray = sum(contact[9] * np.array(contact[5][:2]) for contact in contacts) / total
     return centre
+
+
+def centre_of_mass_motion(client: PhysicsClient, robot: int) -> CentreOfMassMotion:
+    """The robot's CoM (odom, m) and velocity (m/s) from PyBullet's link masses and the
+    positions and velocities of the links' inertial frames (the base's included)."""
+    links = range(client.getNumJoints(robot))
+    masses = np.array([client.getDynamicsInfo(robot, index)[0] for index in (-1, *links)])
+    position, _ = client.getBasePositionAndOrientation(robot)
+    velocity, _ = client.getBaseVelocity(robot)
+    positions, velocities = [np.array(position)], [np.array(velocity)]
+    for state in client.getLinkStates(robot, list(links), computeLinkVelocity=1):
+        positions.append(np.array(state[0]))
+        velocities.append(np.array(state[6]))
+    total = float(masses.sum())
+    return CentreOfMassMotion(masses @ np.array(positions) / total, masses @ np.array(velocities) / total)
 
 
 @dataclass(frozen=True)

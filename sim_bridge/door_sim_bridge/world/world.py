@@ -43,7 +43,7 @@ from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import ContactSolver, RobotMode, StanceConfig, WorldConfig
 from door_sim_bridge.world.door import DoorGroundTruth, DoorPart, DoorState, LatchEvent, SimDoor
 from door_sim_bridge.world.grasp import GraspController, GraspResult
-from door_sim_bridge.world.hardware import SoleContact, make_floor, sole_contact
+from door_sim_bridge.world.hardware import SoleContact, centre_of_mass_motion, make_floor, sole_contact
 from door_sim_bridge.world.robot import JointLimit, JointStates, SimRobot
 from door_sim_bridge.world.robot_urdf import sole_placement_link
 from door_sim_bridge.world.transforms import invert, is_rigid
@@ -337,13 +337,7 @@ class DoorWorld:
 
     def centre_of_mass(self) -> np.ndarray:
         """Whole-body CoM (odom, m): PyBullet's link masses and poses."""
-        total, weighted = 0.0, np.zeros(3)
-        for index in [-1, *range(self._client.getNumJoints(self.robot.body))]:
-            mass = self._client.getDynamicsInfo(self.robot.body, index)[0]
-            if mass > 0.0:
-                total += mass
-                weighted += mass * self.robot.link_com_pose(index)[:3, 3]
-        return weighted / total
+        return centre_of_mass_motion(self._client, self.robot.body).position
 
     def tcp_pose(self, side: Side) -> np.ndarray:
         """4×4 tool-centre point of the ``side`` hand in odom."""
