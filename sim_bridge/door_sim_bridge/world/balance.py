@@ -44,9 +44,12 @@ class BalanceLoop:
     # ------------------------------------------------------------------ per physics step
     def measure(self) -> Measurement:
         soles = {FOOT_OF_SIDE[side]: self._robot.link_pose(link) for side, link in self._robot.profile.feet.items()}
+        # the CoM's motion feeds only the walking DCM feedback: not measured standing
+        walking = self.controller.mode is BalanceMode.WALKING
+        centre_of_mass = (centre_of_mass_motion(self._client, self._robot.body, self._robot.link_masses)
+                          if walking else None)
         return Measurement(soles, centre_of_pressure(self._client, self._robot.body, self._floor),
-                           net_wrench(self._door_forces()), self._robot.base_pose()[:3, :3],
-                           centre_of_mass_motion(self._client, self._robot.body))
+                           net_wrench(self._door_forces()), self._robot.base_pose()[:3, :3], centre_of_mass)
 
     def _door_forces(self) -> list[tuple[np.ndarray, np.ndarray]]:
         """Forces on the robot the stabiliser may lean against: every link's contacts with the

@@ -48,11 +48,10 @@ def centre_of_pressure(client: PhysicsClient, robot: int, floor: int) -> np.ndar
     return centre
 
 
-def centre_of_mass_motion(client: PhysicsClient, robot: int) -> CentreOfMassMotion:
-    """The robot's CoM (odom, m) and velocity (m/s) from PyBullet's link masses and the
-    positions and velocities of the links' inertial frames (the base's included)."""
+def centre_of_mass_motion(client: PhysicsClient, robot: int, masses: np.ndarray) -> CentreOfMassMotion:
+    """The robot's CoM (odom, m) and velocity (m/s) from its link ``masses`` (kg, the base's
+    first, then by link index) and the positions and velocities of the links' inertial frames."""
     links = range(client.getNumJoints(robot))
-    masses = np.array([client.getDynamicsInfo(robot, index)[0] for index in (-1, *links)])
     position, _ = client.getBasePositionAndOrientation(robot)
     velocity, _ = client.getBaseVelocity(robot)
     positions, velocities = [np.array(position)], [np.array(velocity)]

@@ -89,6 +89,9 @@ class SimRobot:
                                  for n in self.joint_names])
         dynamics = client.getDynamicsInfo(self.body, -1)
         self._base_inertial = pose_matrix(dynamics[3], dynamics[4])
+        # kg, the base's then every link's by index: read once (the CoM is measured every step)
+        self.link_masses = np.array([client.getDynamicsInfo(self.body, index)[0]
+                                     for index in range(-1, client.getNumJoints(self.body))])
         self._targets = np.zeros(len(self.joint_names))
         self._wrists: dict[Side, tuple[int, float]] = {}
         if floating:  # PyBullet's default velocity motors would hold every joint still

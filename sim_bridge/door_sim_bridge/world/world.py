@@ -337,7 +337,7 @@ class DoorWorld:
 
     def centre_of_mass(self) -> np.ndarray:
         """Whole-body CoM (odom, m): PyBullet's link masses and poses."""
-        return centre_of_mass_motion(self._client, self.robot.body).position
+        return centre_of_mass_motion(self._client, self.robot.body, self.robot.link_masses).position
 
     def tcp_pose(self, side: Side) -> np.ndarray:
         """4×4 tool-centre point of the ``side`` hand in odom."""
