@@ -64,7 +64,8 @@ class StabilizerOptions:
     max_force: float = 100.0  # N, the measured force is clipped to this magnitude before the feed-forward
     max_walking_force: float = 40.0  # N, the same while walking (a pushed leaf escapes the hand)
     # CoM target shift per m of DCM error while walking (door_sim_bridge.walking.dcm). Rig, push
-    # left walked there from 2.5 m, 4 doors: 0 → 0/4 through, 0.5 → 1/4, 1.5 → 3/4 (issue #11)
+    # left walked there from 2.5 m, 4 doors: 0 → 0/4 through, 0.5 → 1/4 (prototype), 1.5 → 3/4
+    # (prototype) and 2/4 (this module), 2.5 → fell on the first (issue #11)
     dcm_gain: float = 1.5
     max_dcm_shift: float = 0.04  # m per axis
 

@@ -68,7 +68,7 @@ class GraspModel(str, Enum):
 class ContactSolver(str, Enum):
     """The algorithm PyBullet solves its constraints with each step (joint motors, contacts, grasps).
 
-    Under either, a stance leg can give way at lift-off (issue #11, stop 26). The pattern's ZMP
+    Under either, a stance leg can give way at lift-off (issue #11, stop 27). The pattern's ZMP
     leaves the feet's midpoint for the stance sole in one 0.06 s QP step, the CoM 5.4 cm beside
     that sole; under the iterative solver the stance ankle roll's motor then applies 0-7 of its
     100 N·m while its error grows to 0.27 rad and the sole's edge sinks 45 mm into the floor (a
@@ -82,7 +82,7 @@ class ContactSolver(str, Enum):
     default). 50 sweeps: the lift-off dip; 400 sweeps (2.7× the CPU) removed it from one
     replayed approach walk but not from the push passage."""
     DANTZIG = "dantzig"
-    """A direct (pivoting) LCP solver, at most ``solver_iterations`` pivots: it removed the dip
+    """A direct (pivoting) LCP solver (``solver_iterations`` is the iterative one's): it removed the dip
     from the replayed approach walk at the iterative solver's cost, but in the passage rig the
     robot fell as often (push door from 2.5 m: 0/4) and a pull door's tuck missed its goal by
     0.26-0.28 rad (arm_left_6)."""
@@ -313,7 +313,7 @@ class WorldConfig:
     fall: FallConfig = field(default_factory=FallConfig)
     floor_friction: float = 1.0  # Coulomb coefficient between soles and floor
     contact_solver: ContactSolver = ContactSolver.SEQUENTIAL_IMPULSE
-    solver_iterations: int = 50  # sweeps per step of the iterative solver (and the direct one's cap)
+    solver_iterations: int = 50  # sweeps per step of the iterative solver
     posture_overrides: tuple[tuple[str, float], ...] = ()  # (joint, rad) over the nominal posture
 
     def __post_init__(self) -> None:

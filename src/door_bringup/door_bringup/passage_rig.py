@@ -380,9 +380,9 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
             if status == "success":  # the walk's contacts are the ones that matter then
                 stage, status, reason, peaks = walk_through(world, estimate, kinematics, parameters, hand, trace)
         strikes = tuple(sorted(peaks.items(), key=lambda item: -item[1])[:3])
-        fell = trace is not None and status == OutcomeStatus.FELL.value
+        fall_trace = trace.report() if trace is not None and status == OutcomeStatus.FELL.value else ()
         return PassageRun(robot, opening, hinge, trial, stage, status, reason, world.door_state().hinge_angle,
-                          strikes, trace.report() if fell and trace is not None else ())
+                          strikes, fall_trace)
 
 
 def physics_overrides(parser: argparse.ArgumentParser, args: argparse.Namespace) -> dict[str, Any]:
