@@ -7,6 +7,7 @@ true of the robot's model (issue #14: no TALOS assumptions in the cores).
   the footstep planner's ``body_width`` × ``body_depth`` rectangle (its centre ``body_offset``
   ahead of the base);
 * the head camera looks forward and down, with the image's x to the robot's right;
+* each wrist (the joints a door may hold off) is the last three joints of its arm chain;
 * each hand's grasp orientation is a rotation that puts ``into_door`` into the door and ``up``
   up, and the hand reaches it at the handle from the stand pose of a push door, facing it and
   sideways (IK from several seeds; the motion library's own problem adds the path and its
@@ -69,6 +70,15 @@ def test_the_head_camera_looks_forward_and_down(robot):
     assert 0.15 < -optical[2, 2] < 0.9  # 9-64° below the horizon
     assert optical[:3, 0] @ base[:3, 1] < -0.95  # image x to the right
     np.testing.assert_allclose(optical[:3, :3].T @ optical[:3, :3], np.eye(3), atol=1e-6)
+
+
+def test_each_wrist_is_the_last_three_joints_of_its_arm_chain(robot):
+    """A wrist the door holds off may yield (the trajectory judgement): its joints, found up the
+    URDF from the hand, are every profile's spherical wrist, the last three joints of the arm."""
+    with DoorWorld(WorldConfig(robot_profile=robot, robot_mode=RobotMode.KINEMATIC)) as world:
+        for side, arm in world.profile.arms.items():
+            assert world.robot.wrist_joints(side) == tuple(reversed(arm.joints[-3:]))
+            assert world.robot.wrist_joint(side) == arm.joints[-1]
 
 
 @pytest.mark.parametrize("passage", ["facing", "sideways"])

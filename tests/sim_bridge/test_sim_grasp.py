@@ -199,6 +199,20 @@ def test_a_hand_pressed_on_the_leaf_touches_the_door_and_a_blocked_arm_stops_str
     assert world.joint_positions()[blocked] == pytest.approx(held_at, abs=0.02)
 
 
+def test_a_wrist_joint_the_door_holds_off_at_full_effort_has_yielded_to_it(world, kinematics):
+    """The fingers resting on the lever (touching it, not holding it), the wrist's pitch commanded
+    0.5 rad into it: the lever holds the joint far beyond any tolerance while its motor pushes at
+    full force — the joint yielded to the door, the execution succeeds and names it (a pull door's
+    leaf so bends the tucked hand's wrist)."""
+    reach_handle(world, kinematics, HAND, offset=np.array([0.02, 0.0, 0.03]))
+    assert world.hand_touches_door(HAND) and not world.holding(HAND)
+    pitch = world.robot.wrist_joints(HAND)[1]
+    goal = world.joint_positions()[pitch] + 0.5
+    result = TrajectoryExecution(world, [1.0], [pitch], [[goal]]).run()
+    assert result.status is OutcomeStatus.SUCCESS and f"{pitch} yielded to the door" in result.reason
+    assert abs(world.joint_positions()[pitch] - goal) > ExecutionConfig().held_wrist_tolerance
+
+
 def test_standing_the_robot_does_not_lean_against_a_hand_holding_a_closed_leafs_lever(kinematics):
     """The lever pressed against its stop by the wrist: the grasp bears the force, and the
     balance's measured external force leaves it out while the leaf is closed (a lean would
