@@ -152,19 +152,30 @@ class SimulationLoop:
 
     # ------------------------------------------------------------------ executions
     def submit(self, kind: ExecutionKind, request_id: int, build: Callable[[DoorWorld], Execution]) -> LoopReport:
-        """Build the execution of a request and start it, or report why not."""
+        """Build the execution of a request and start it, or report why not. An execution that
+        has already ended (a trajectory stops at once) frees the robot now, its outcome first,
+        rather than at the next tick: the head search's look, stopped when the door is confirmed,
+        must not refuse the walk that follows as busy."""
+        ended = self._retire_ended()
         try:
             execution = build(self.world)
         except Exception as error:  # a bug: a failure outcome, not a dead node
             fault = self._fault(TickStage.BUILD, error)
-            return LoopReport((self._internal_error(kind, request_id, fault),), self._new((fault,)))
+            return LoopReport((*ended, self._internal_error(kind, request_id, fault)), self._new((fault,)))
         refusal = self.deadman.refusal() or (f"busy executing {self.running}" if self.running else None)
         if refusal is not None:
-            return LoopReport((ExecutionOutcome(kind, request_id, OutcomeStatus.REJECTED, refusal),))
+            return LoopReport((*ended, ExecutionOutcome(kind, request_id, OutcomeStatus.REJECTED, refusal)))
         if execution.done:  # rejected while validating: nothing moved
-            return LoopReport((self._outcome(Running(execution, kind, request_id)),))
+            return LoopReport((*ended, self._outcome(Running(execution, kind, request_id))))
         self.running = Running(execution, kind, request_id)
-        return LoopReport(started=self.running)
+        return LoopReport(ended, started=self.running)
+
+    def _retire_ended(self) -> tuple[ExecutionOutcome, ...]:
+        """The running execution's outcome if it has ended (it is then no longer running)."""
+        if self.running is None or not self.running.execution.done:
+            return ()
+        running, self.running = self.running, None
+        return (self._outcome(running),)
 
     def stop(self, kind: ExecutionKind | None, why: str) -> LoopReport:
         """Stop the running execution if it is of ``kind`` (None: any); it reports STOPPED

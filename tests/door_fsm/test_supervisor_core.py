@@ -150,6 +150,23 @@ def test_the_head_search_moves_the_neck_only_while_detect_door_waits() -> None:
     assert supervisor.look(look) == []
 
 
+def test_the_estimate_that_confirms_the_door_stops_a_look_still_moving() -> None:
+    """A look may still move the neck when the door is confirmed: the robot would then refuse the
+    walk as busy with it (three repeats alike on a loaded machine), so the confirmation stops it
+    first (EndLook: an empty trajectory, the neck holds). Without a look there is nothing to stop."""
+    from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
+
+    robot = SupervisedRobot.of(load_profile("talos"))
+    looking = _started(robot)
+    looking.look(JointTrajectory(joint_names=["head_2_joint"], points=[JointTrajectoryPoint(positions=[0.4])]))
+    actions = looking.door_estimate(encode(ESTIMATE), t(1.0))
+    ends = [i for i, a in enumerate(actions) if isinstance(a, act.EndLook)]
+    walk = next(i for i, a in enumerate(actions) if isinstance(a, act.RequestFootsteps))
+    assert len(ends) == 1 and ends[0] < walk
+    still = _started(robot)
+    assert not any(isinstance(a, act.EndLook) for a in still.door_estimate(encode(ESTIMATE), t(1.0)))
+
+
 @pytest.mark.parametrize(("joints", "positions", "says"), [
     (["head_2_joint"], None, "trajectory has no points"),
     ([], [], "no joints"),

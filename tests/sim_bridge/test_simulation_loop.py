@@ -114,6 +114,23 @@ def test_one_execution_at_a_time_and_its_outcome_when_it_ends(world):
     assert loop.running is None and np.max(np.abs(_arm(world) - goal)) < np.radians(1)
 
 
+def test_a_stopped_trajectory_frees_the_robot_at_once_for_the_next_command(world):
+    """The head search's look stopped as the door is confirmed, then the walk: the stop ends the
+    trajectory at once, so the next command is taken without waiting for a tick (it was refused
+    "busy executing trajectory …" three repeats in a row on a loaded machine), and the stopped
+    one's outcome comes first."""
+    _start_over(world)
+    loop, publish = _loop(world), Published()
+    loop.submit(TRAJECTORY, 11, _move_arm(np.array([-0.2, 0.1, -0.2, 0.1]), duration=2.0))
+    _run(loop, publish, 5)
+    assert loop.stop(TRAJECTORY, "the door is confirmed").stop.stopped is not None
+    report = loop.submit(TRAJECTORY, 12, _move_arm(np.zeros(4)))
+    assert [(o.request_id, o.status) for o in report.outcomes] == [(11, OutcomeStatus.STOPPED)]
+    assert report.started is not None and report.started.request_id == 12
+    outcomes = [o for r in _run(loop, publish, 100) for o in r.outcomes]
+    assert [(o.request_id, o.status) for o in outcomes] == [(12, OutcomeStatus.SUCCESS)]
+
+
 def test_an_invalid_execution_is_answered_at_once_and_an_empty_stop_names_nothing(world):
     loop = _loop(world)
     report = loop.submit(TRAJECTORY, 9, lambda w: TrajectoryExecution(w, [1.0], ("wing_joint",), [[0.0]]))

@@ -66,6 +66,12 @@ class Look:
 
 
 @dataclass(frozen=True)
+class EndLook:
+    """The head search is over (the door is confirmed): stop its neck move if one still runs,
+    with an empty JointTrajectory (the neck holds where it is), so the robot is free for the walk."""
+
+
+@dataclass(frozen=True)
 class AskApproval:
     request_id: int
     text: str
@@ -90,4 +96,4 @@ class Notice:
 
 
 Action = (RequestDetection | RequestFootsteps | RequestMotion | CancelPlanning | StopMotion | CallGrasp
-          | Execute | Look | AskApproval | ClearApproval | AnnounceState | Notice)
+          | Execute | Look | EndLook | AskApproval | ClearApproval | AnnounceState | Notice)

@@ -59,7 +59,8 @@ class FsmSupervisorNode(Node):
             act.CancelPlanning: lambda a: self.pubs[PLANNER_TOPICS[a.kind].cancel].publish(
                 String(data=encode(PlanningCancel(a.request_id, a.reason)))),
             act.CallGrasp: self._call_grasp, act.Execute: self._execute,
-            act.Look: lambda a: self.commands.send(a.trajectory)}  # the head search's: no outcome awaited
+            act.Look: lambda a: self.commands.send(a.trajectory),  # the head search's: no outcome awaited
+            act.EndLook: lambda a: self.commands.hold_arm()}
         self.pubs = {topic: create_contract_publisher(self, topic) for topic in (
             Topics.TASK_STATE, Topics.APPROVAL_REQUEST, Topics.TASK_REPORT,
             *(t for topics in PLANNER_TOPICS.values() for t in (topics.request, topics.cancel)))}

@@ -40,6 +40,10 @@ class RobotCommands:
         (self._feet if isinstance(command, Path) else self._arm).publish(command)
         return stamp
 
+    def hold_arm(self) -> None:
+        """Stop the running joint trajectory (a look, an arm motion): the joints hold."""
+        self._arm.publish(stop_messages(time_msg_of_ns(self.next_stamp()))[0])
+
     def stop(self) -> None:
         """Stop every execution now (the empty pair)."""
         trajectory, path = stop_messages(time_msg_of_ns(self.next_stamp()))

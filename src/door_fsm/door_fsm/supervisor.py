@@ -115,6 +115,7 @@ class Supervisor:
         self.robot, self.graph = robot, graph
         self.exchange = PlanExchange(lambda message: work_of(message, robot.step_duration))
         self._detection_request: int | None = None
+        self._looked = False  # a look was sent since the detection request
 
     @classmethod
     def from_parameters(cls, p: Mapping[str, Any], robot: SupervisedRobot, wall_now: float) -> Supervisor:
@@ -141,18 +142,25 @@ class Supervisor:
             return []
         request, self._detection_request = self._detection_request, None
         self.door.approved = estimate
-        return self.handle(ev.ProposalReady(request, door_summary(estimate)), now)
+        search_over: list[act.Action] = [act.EndLook()] if self._looked else []
+        self._looked = False
+        return search_over + self.handle(ev.ProposalReady(request, door_summary(estimate)), now)
 
     def look(self, trajectory: Any) -> list[act.Action]:
         """The detector's neck move (``/door_detector/look``): sent to the robot only while
         DETECT_DOOR waits for an estimate (not paused, stopped or in any other state), and only
-        a well-formed one that moves no arm (:func:`look_problem`; else a notice, nothing moves)."""
+        a well-formed one that moves no arm (:func:`look_problem`; else a notice, nothing moves).
+        The estimate that confirms the door ends the search: a look still moving is stopped
+        (:class:`~door_fsm.actions.EndLook`), or the walk would find the robot busy with it."""
         waiting = (self.machine.state is TaskState.DETECT_DOOR and self.machine.phase is Phase.PLANNING
                    and self._detection_request == self.machine.request_id)
         if not waiting:
             return []
         problem = look_problem(trajectory, self.robot.arm_joints)
-        return [act.Notice(f"look refused: {problem}")] if problem else [act.Look(trajectory)]
+        if problem:
+            return [act.Notice(f"look refused: {problem}")]
+        self._looked = True
+        return [act.Look(trajectory)]
 
     def proposal(self, kind: PlannerKind, message: Any, now: Instant) -> list[act.Action]:
         """A planner's proposal message (a Path or JointTrajectory), known by its stamp."""
