@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from door_bringup.interrupts import interrupt_on_sigterm
+from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm
 
 
 def test_a_sigterm_raises_keyboard_interrupt_in_the_main_thread():
@@ -81,20 +81,24 @@ def _until(condition, deadline_s: float) -> bool:
 
 @pytest.mark.slow
 @pytest.mark.ros
-def test_a_sigterm_to_the_monte_carlo_stops_every_graph_and_worker(workspace):
+def test_a_sigterm_to_the_monte_carlo_stops_every_graph_and_worker(workspace, tmp_path):
     """Two trials at once (two pool workers, each with a graph of 6 node processes): a SIGTERM
     to the Monte-Carlo leaves nothing running. Before, it left the 12 nodes and both workers,
-    which went on starting trials."""
-    job = subprocess.Popen([sys.executable, "-m", "door_bringup.monte_carlo", "--trials", "2", "--jobs", "2",
-                            "--seed", "11"], env=workspace.environment(), stdout=subprocess.DEVNULL,
-                           stderr=subprocess.DEVNULL)
+    which went on starting trials. It ends with one line saying how to resume, not a traceback."""
+    stderr = tmp_path / "stderr.txt"
+    with stderr.open("w") as sink:
+        job = subprocess.Popen([sys.executable, "-m", "door_bringup.monte_carlo", "--trials", "2", "--jobs", "2",
+                                "--seed", "11"], env=workspace.environment(), stdout=subprocess.DEVNULL,
+                               stderr=sink)
     below: set[int] = set()
     try:
         assert _until(lambda: _started(job.pid, below, 10), 180.0), "the two graphs did not start"
         assert job.poll() is None
         job.send_signal(signal.SIGTERM)
-        assert job.wait(timeout=90) != 0
+        assert job.wait(timeout=90) == INTERRUPTED
         assert _until(lambda: not _alive(below), 60.0), _alive(below)  # no node or worker orphaned
+        said = stderr.read_text()
+        assert "interrupted (SIGTERM): 0 of 2 trials finished; --resume " in said and "Traceback" not in said
     finally:
         job.kill()
         for pid in _alive(below):

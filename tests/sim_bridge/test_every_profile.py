@@ -7,7 +7,7 @@ true of the robot's model (issue #14: no TALOS assumptions in the cores).
   the footstep planner's ``body_width`` × ``body_depth`` rectangle (its centre ``body_offset``
   ahead of the base);
 * the head camera looks forward and down, with the image's x to the robot's right;
-* each wrist (the joints a door may hold off) is the last three joints of its arm chain;
+* each arm (the joints a door may hold off) is seven joints of its own, ending at the wrist;
 * each hand's grasp orientation is a rotation that puts ``into_door`` into the door and ``up``
   up, and the hand reaches it at the handle from the stand pose of a push door, facing it and
   sideways (IK from several seeds; the motion library's own problem adds the path and its
@@ -72,13 +72,15 @@ def test_the_head_camera_looks_forward_and_down(robot):
     np.testing.assert_allclose(optical[:3, :3].T @ optical[:3, :3], np.eye(3), atol=1e-6)
 
 
-def test_each_wrist_is_the_last_three_joints_of_its_arm_chain(robot):
-    """A wrist the door holds off may yield (the trajectory judgement): its joints, found up the
-    URDF from the hand, are every profile's spherical wrist, the last three joints of the arm."""
+def test_each_arm_is_seven_joints_of_its_own_and_ends_at_the_wrist(robot):
+    """The joints a door may hold off (the trajectory judgement's yield): an arm chain's joints
+    that move only its hand — every profile's 7-DOF arm, the torso left out — ending at the wrist."""
     with DoorWorld(WorldConfig(robot_profile=robot, robot_mode=RobotMode.KINEMATIC)) as world:
-        for side, arm in world.profile.arms.items():
-            assert world.robot.wrist_joints(side) == tuple(reversed(arm.joints[-3:]))
-            assert world.robot.wrist_joint(side) == arm.joints[-1]
+        arms = {side: world.robot.arm_joints(side) for side in world.profile.arms}
+        for side, joints in arms.items():
+            assert len(joints) == 7 and joints == world.profile.arm(side).joints[-7:]
+            assert joints[-1] == world.robot.wrist_joint(side)
+        assert not set.intersection(*(set(joints) for joints in arms.values()))
 
 
 @pytest.mark.parametrize("passage", ["facing", "sideways"])

@@ -20,16 +20,15 @@ instead: a turn or swing is planned on the *estimated* lever axis and hinge, the
 hand on its true arc, and the weak last wrist joint (TALOS: 6.6 N·m) is what gives way, 0.06-0.09 rad
 for an estimate off by the detector's ~0.6 cm / 0.5° (the turn failed so in 4 of 20 sideways rig
 doors); a pull door's leaf resting on the blocking hand held the same joint 0.05-0.14 rad off the
-tuck's goal (5 of 6 rig doors stopped there). A wrist joint of a hand the door leans on without
-being held (the three joints nearest the hand: TALOS's have 3-6.6 N·m) that ends beyond its
-tolerance while its motor pushes back towards the goal at full force has *yielded to the door*:
-the hand went where it was sent and the door holds it off, so the execution succeeds and its
-reason names the joint. (A hand holding the lever is not so excused: there the wrist held off
-means the path and the lever's true arc disagree, and the grasp bears it.) A pull door
-pressed by its closer and 2-3 N·m of wind on the tucked hand's fingertips (~50 N) bent TALOS's
-``arm_left_6``/``_7`` 0.36-0.39 rad at 6.6 N·m, and every repeat of the tuck failed alike. An
-elbow or shoulder so held is still a FAILURE: an arm blocked by the door. A grasp slip during the
-motion stops it at once with FAILURE.
+tuck's goal (5 of 6 rig doors stopped there). An arm joint of a hand the open door leans on (it
+touches the leaf or handle without holding it, and the closer and wind press the leaf on it) that
+ends beyond its tolerance while its motor pushes back towards the goal at full force has *yielded
+to the door*: the hand went where it was sent and the door holds it off, so the execution
+succeeds and its reason names the joint. The leaf on a tucked hand's fingertips (~50 N, the
+closer and 2-3 N·m of wind) bent TALOS's wrist (``arm_left_6``/``_7``, 6.6 N·m) 0.36-0.64 rad and
+held its elbow 0.051 rad off, and every repeat of the tuck failed alike. An arm held off by a
+*closed* leaf is still a FAILURE: it is the arm that pushes (an arm blocked by the door). A grasp
+slip during the motion stops it at once with FAILURE.
 """
 
 from __future__ import annotations
@@ -41,14 +40,13 @@ from scipy.interpolate import CubicHermiteSpline, PchipInterpolator
 
 from door_contract.converters.trajectory import JointPath
 from door_contract.payloads import OutcomeStatus
-from door_contract.vocabulary import Side
 from door_sim_bridge.execution.base import Execution, ExecutionPhase
 from door_sim_bridge.world.config import ExecutionConfig
 from door_sim_bridge.world.robot import JointLimit
 from door_sim_bridge.world.world import DoorWorld
 
 LIMIT_TOLERANCE = 1e-6  # rad
-YIELD_EFFORT = 0.98  # × the motor's force: a wrist joint pushing back this hard has yielded to the door
+YIELD_EFFORT = 0.98  # × the motor's force: an arm joint pushing back this hard has yielded to the door
 
 
 def _shape_problem(times: np.ndarray, names: tuple[str, ...], positions: np.ndarray,
@@ -221,10 +219,9 @@ class TrajectoryExecution(Execution):
         states = self.world.joint_states()
         reached = dict(zip(states.names, states.positions.tolist()))
         error = {name: reached[name] - goal for name, goal in self.final_positions.items()}
-        holding, leant_on = self._hands_on_door()
-        tolerances = self._tolerances(holding | leant_on)
+        tolerances = self._tolerances()
         excess = {name: abs(off) - tolerances[name] for name, off in error.items()}
-        yielded = self._yielded(leant_on, error, excess, dict(zip(states.names, states.efforts.tolist())))
+        yielded = self._yielded(error, excess, dict(zip(states.names, states.efforts.tolist())))
         worst = max((name for name in excess if name not in yielded), key=excess.__getitem__, default=None)
         if worst is None or excess[worst] <= 0.0:
             self._finish(OutcomeStatus.SUCCESS, "; ".join(
@@ -235,27 +232,24 @@ class TrajectoryExecution(Execution):
             self._finish(OutcomeStatus.FAILURE, f"{worst} ended {abs(error[worst]):.3f} rad from its goal "
                                                 f"(tolerance {tolerances[worst]:.3f} rad)")
 
-    def _hands_on_door(self) -> tuple[set[Side], set[Side]]:
-        """The hands holding the handle, and those the leaf or handle touches without being held."""
-        arms = self.world.profile.arms
-        holding = {side for side in arms if self.world.holding(side)}
-        return holding, {side for side in arms if side not in holding and self.world.hand_touches_door(side)}
-
-    def _tolerances(self, on_door: set[Side]) -> dict[str, float]:
-        """Each joint's goal tolerance: ``held_wrist_tolerance`` for the last wrist joint of a
-        hand ``on_door``, ``goal_tolerance`` for the rest."""
-        held = {self.world.robot.wrist_joint(side) for side in on_door}
+    def _tolerances(self) -> dict[str, float]:
+        """Each joint's goal tolerance: ``held_wrist_tolerance`` for the last wrist joint of a hand
+        that holds the handle or touches the door, ``goal_tolerance`` for the rest."""
+        world = self.world
+        held = {world.robot.wrist_joint(side) for side in world.profile.arms
+                if world.holding(side) or world.hand_touches_door(side)}
         return {name: self._config.held_wrist_tolerance if name in held else self._config.goal_tolerance
                 for name in self.final_positions}
 
-    def _yielded(self, leant_on: set[Side], error: Mapping[str, float], excess: Mapping[str, float],
+    def _yielded(self, error: Mapping[str, float], excess: Mapping[str, float],
                  efforts: Mapping[str, float]) -> list[str]:
-        """The wrist joints of the ``leant_on`` hands beyond their tolerance (``excess`` > 0) whose
-        motors push back towards the goal (against ``error``, rad) at :data:`YIELD_EFFORT` × their
-        force or more (``efforts``, N·m): the door holds them off."""
+        """The arm joints of the hands the door leans on (:meth:`DoorWorld.door_leans_on`) beyond
+        their tolerance (``excess`` > 0) whose motors push back towards the goal (against
+        ``error``, rad) at :data:`YIELD_EFFORT` × their force or more (``efforts``, N·m)."""
         robot = self.world.robot
-        wrists = {joint for side in leant_on for joint in robot.wrist_joints(side)} & set(excess)
-        return sorted(name for name in wrists if excess[name] > 0.0 and -error[name] * efforts[name] > 0.0
+        arms = {name for side in self.world.profile.arms if self.world.door_leans_on(side)
+                for name in robot.arm_joints(side)} & set(excess)
+        return sorted(name for name in arms if excess[name] > 0.0 and -error[name] * efforts[name] > 0.0
                       and abs(efforts[name]) >= YIELD_EFFORT * robot.motor_force(name))
 
     def _hold(self) -> None:

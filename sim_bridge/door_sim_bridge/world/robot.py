@@ -37,7 +37,6 @@ from door_sim_bridge.world.transforms import invert, pose_matrix, position_quate
 
 MOVABLE_JOINT_TYPES = (pybullet.JOINT_REVOLUTE, pybullet.JOINT_PRISMATIC)
 MIN_MOTOR_FORCE = 5.0  # N·m, so weak URDF efforts (wrist: 3 N·m) still hold the hand's weight
-WRIST_JOINTS = 3  # a spherical wrist: TALOS arm_5-7, Atlas v4 wry/wrx/wry2, DRC-HUBO WY/WP/WR, G1 roll/pitch/yaw
 
 
 @dataclass(frozen=True)
@@ -179,17 +178,17 @@ class SimRobot:
 
     def wrist_joint(self, side: Side) -> str:
         """The movable joint nearest above the ``side`` hand's TCP parent frame."""
-        return self.wrist_joints(side)[0]
-
-    def wrist_joints(self, side: Side) -> tuple[str, ...]:
-        """The ``side`` wrist: the :data:`WRIST_JOINTS` movable joints nearest above the hand's TCP
-        parent frame, the nearest first (fewer if the chain has fewer)."""
         names = {self.joint_link_index(n): n for n in self.joint_names}
-        above = [names[index] for index in self.chain_to_root(self.link_index(self.profile.arm(side).tcp_parent_frame))
-                 if index in names]
-        if not above:
-            raise SimulationError(f"{self.profile.name}: no joint above {self.profile.arm(side).tcp_parent_frame}")
-        return tuple(above[:WRIST_JOINTS])
+        for index in self.chain_to_root(self.link_index(self.profile.arm(side).tcp_parent_frame)):
+            if index in names:
+                return names[index]
+        raise SimulationError(f"{self.profile.name}: no joint above {self.profile.arm(side).tcp_parent_frame}")
+
+    def arm_joints(self, side: Side) -> tuple[str, ...]:
+        """The joints of the ``side`` arm chain that move only that hand (a torso in every arm
+        chain, as TALOS's, is not the arm's)."""
+        others = {name for other, arm in self.profile.arms.items() if other != side for name in arm.joints}
+        return tuple(name for name in self.profile.arm(side).joints if name not in others)
 
     def enable_wrist_sensors(self) -> None:
         """Six-axis force/torque sensing at both wrists (PyBullet's joint reaction forces)."""

@@ -125,9 +125,9 @@ class DoorWorld:
                                        self.config.grasp_model)
         # the floor exists exactly for the physical robot
         self.balance = (BalanceLoop(self._client, self.robot, self._floor, self.door.body, self.config,
-                                    self._grasps.holding, self._leaf_closed) if self._floor is not None else None)
+                                    self._grasps.holding, self.leaf_closed) if self._floor is not None else None)
 
-    def _leaf_closed(self) -> bool:
+    def leaf_closed(self) -> bool:
         """The leaf within ``LEAF_CLOSED`` of its frame (it can bear on a hand only through its lever)."""
         return self.door.state().hinge_angle < LEAF_CLOSED
 
@@ -477,6 +477,12 @@ class DoorWorld:
         moving = {self.door.link_index(part) for part in DoorPart}
         contacts = self._client.getContactPoints(bodyA=self.robot.body, bodyB=self.door.body)
         return any(contact[3] in hand and contact[4] in moving for contact in contacts)
+
+    def door_leans_on(self, side: Side) -> bool:
+        """Whether the open door bears on the ``side`` hand by itself: the hand touches the leaf
+        or handle, does not hold it, and the leaf is open (its closer and the wind press it on
+        the hand; a closed leaf rests on its frame, and a hand touching it pushes it)."""
+        return not self.holding(side) and not self.leaf_closed() and self.hand_touches_door(side)
 
     def hand_handle_distance(self, side: Side) -> float:
         """Distance (m) between the ``side`` TCP and the handle grasp point."""

@@ -35,7 +35,7 @@ from std_msgs.msg import String
 
 from door_bringup.bags.recorder import message_digest, recorded_key
 from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH, NodeLaunch
-from door_bringup.interrupts import interrupt_on_sigterm
+from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm
 from door_bringup.params_files import ROBOT_PARAMETER, robot_nodes
 from door_bringup.processes import ProcessSupervisor
 from door_bringup.progress_monitor import ProgressMonitor
@@ -288,7 +288,11 @@ def main(argv: list[str] | None = None) -> int:
     run_dir.mkdir(parents=True, exist_ok=True)
     print(f"door task: {options.robot}, {options.opening} door hinged {options.hinge}, autonomy "
           f"{options.autonomy}, operator {options.operator}; run folder {run_dir}", flush=True)
-    report = run_task(options, run_dir, workspace)
+    try:
+        report = run_task(options, run_dir, workspace)
+    except KeyboardInterrupt as signal_name:  # run_task has stopped the graph on its way out
+        print(f"\ninterrupted ({signal_name or 'SIGINT'}): the graph is stopped; logs in {run_dir}", file=sys.stderr)
+        return INTERRUPTED
     table = write_report(run_dir, options, report)
     print(table, flush=True)
     for plot in plot_run(run_dir, options.opening, options.robot):

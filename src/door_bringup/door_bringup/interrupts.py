@@ -11,7 +11,10 @@ from __future__ import annotations
 import signal
 from types import FrameType
 
-__all__ = ["interrupt_on_sigterm"]
+__all__ = ["INTERRUPTED", "interrupt_on_sigterm"]
+
+INTERRUPTED = 130
+"""The exit code of a run ended by Ctrl-C or SIGTERM (128 + SIGINT, as shells report it)."""
 
 
 def interrupt_on_sigterm() -> None:

@@ -35,7 +35,7 @@ import numpy as np
 
 from door_bringup.domains import lease_domain
 from door_bringup.door_task import TaskOptions, run_task
-from door_bringup.interrupts import interrupt_on_sigterm
+from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm
 from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.table_one import format_table, phase_of, phase_rows, state_attempts
 from door_bringup.trial_ranges import NARROW, RangeSet, TrialRanges, ranges_named
@@ -93,7 +93,13 @@ def main(argv: list[str] | None = None) -> int:
                        camera_rate=args.camera_rate)
     trials = draw_trials(np.random.default_rng(args.seed), base, args.trials, args.openings,
                          ranges_named(RangeSet(args.ranges)))
-    reports = run_trials(trials, out, workspace, args.jobs)
+    try:
+        reports = run_trials(trials, out, workspace, args.jobs)
+    except KeyboardInterrupt as signal_name:  # every graph is stopped; finished trials are on disk
+        finished = sum(1 for path in out.glob(f"trial_*/{TRIAL_FILE}"))
+        print(f"\ninterrupted ({signal_name or 'SIGINT'}): {finished} of {len(trials)} trials finished; "
+              f"--resume {out} runs the rest", file=sys.stderr)
+        return INTERRUPTED
     text = f"Robot: {args.robot}\n\n" + summary(reports)
     print(text)
     (out / "summary.md").write_text(text)
