@@ -8,4 +8,5 @@ the simulator; what measures them, on the simulator or alone, lives here, allowe
   Table II with the head search, single frames, time per frame).
 * :mod:`door_evaluation.trajopt`: the trajectory optimiser's benchmarks (the backends on
   [Zucker 2013]'s problem, each door motion, the peer TrajOpt) and its toy problems.
+* :mod:`door_evaluation.footsteps`: the footstep planner's benchmark over the full ranges.
 """
