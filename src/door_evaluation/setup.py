@@ -18,6 +18,7 @@ setup(
     maintainer="Door traversal team",
     maintainer_email="door-traversal@example.org",
     description="Evaluations and benchmarks of the cores (the detector's Table II on the simulator, time per frame; "
-                "the footstep planner's and the trajectory optimiser's benchmarks, toy problems and peer comparison).",
+                "the footstep planner's and the trajectory optimiser's benchmarks, toy problems and peer comparison; "
+                "the simulator's real-time factor).",
     license="Apache-2.0",
 )

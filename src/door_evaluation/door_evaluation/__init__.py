@@ -9,4 +9,5 @@ the simulator; what measures them, on the simulator or alone, lives here, allowe
 * :mod:`door_evaluation.trajopt`: the trajectory optimiser's benchmarks (the backends on
   [Zucker 2013]'s problem, each door motion, the peer TrajOpt) and its toy problems.
 * :mod:`door_evaluation.footsteps`: the footstep planner's benchmark over the full ranges.
+* :mod:`door_evaluation.sim`: the simulation bridge's benchmark (real-time factor, camera rates).
 """
