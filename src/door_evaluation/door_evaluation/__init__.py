@@ -1,7 +1,7 @@
 """Evaluations, benchmarks, toy problems and sim scenes of the cores (issue #17: no core depends upward).
 
-The cores (``door_detection`` and the others) hold only what their nodes use, and do not import
-the simulator; what measures them, on the simulator or alone, lives here, allowed to depend on
+The cores (``door_detection`` and the others) import neither this package nor the simulator;
+what measures them, on the simulator or alone, lives here, allowed to depend on
 ``door_sim_bridge`` and on the cores it measures.
 
 * :mod:`door_evaluation.detection`: the door detector on the sim core ([Banerjee 2015]
