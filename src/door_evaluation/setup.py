@@ -1,4 +1,4 @@
-"""ament_python package door_evaluation: evaluations and benchmarks of the cores on the simulator."""
+"""ament_python package door_evaluation: evaluations and benchmarks of the cores (on the simulator or alone)."""
 
 from setuptools import find_packages, setup
 
@@ -17,6 +17,8 @@ setup(
     zip_safe=True,
     maintainer="Door traversal team",
     maintainer_email="door-traversal@example.org",
-    description="Evaluations and benchmarks of the cores on the simulator (the detector's Table II, time per frame).",
+    description="Evaluations and benchmarks of the cores (the detector's Table II on the simulator, time per frame; "
+                "the footstep planner's and the trajectory optimiser's benchmarks, toy problems and peer comparison; "
+                "the simulator's real-time factor).",
     license="Apache-2.0",
 )

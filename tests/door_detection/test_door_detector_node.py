@@ -1,16 +1,13 @@
 """The detector as a process over real DDS: rendered frames give a voted estimate in odom;
 bad frames and a scribble outside the image give warnings, no estimate, and a live node."""
 
-import subprocess
-
 import numpy as np
 import pytest
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point32, PolygonStamped
-from ros_helpers import executor_for, spin_until
+from ros_helpers import executor_for, node_process, spin_until
 
-from door_bringup.graph_spec import GRAPH
 from door_contract.converters.camera_info import intrinsics_to_camera_info
 from door_contract.converters.image import array_to_image
 from door_contract.converters.pose import matrix_to_pose_stamped
@@ -20,7 +17,6 @@ from door_contract.topics import Topics
 from door_sim_bridge.world import DoorWorld, StanceConfig, WorldConfig
 
 pytestmark = pytest.mark.ros
-DETECTOR = next(launch for launch in GRAPH if launch.node_name == "door_detector")
 FRAME = "head_camera_optical_frame"
 
 
@@ -33,12 +29,8 @@ def rendered():
 @pytest.fixture(scope="module")
 def detector(workspace, tmp_path_factory):
     log = tmp_path_factory.mktemp("detector") / "detector.log"
-    process = subprocess.Popen([str(workspace.executable(DETECTOR.package, DETECTOR.executable)), "--ros-args",
-                                "--params-file", str(workspace.params_file("door_detector"))],
-                               env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
-    yield process, log
-    process.send_signal(2)
-    assert process.wait(timeout=30) == 0, log.read_text()
+    with node_process(workspace, "door_detector", log) as process:
+        yield process, log
 
 
 class Camera:

@@ -1,12 +1,11 @@
 """The supervisor as a process over real DDS, with the test acting as operator and detector."""
 
 import subprocess
-from pathlib import Path
 
 import pytest
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
-from ros_helpers import executor_for, spin_until
+from ros_helpers import executor_for, node_process, spin_until, start_node, stop_node
 from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
@@ -16,7 +15,6 @@ from door_contract.topics import Topics
 from door_contract.vocabulary import AttemptOutcome, HingeSide
 
 pytestmark = pytest.mark.ros
-FSM = next(launch for launch in GRAPH if launch.node_name == "fsm_supervisor")
 ESTIMATE = DoorEstimate(0.0, "odom", (1.2, -0.35, 0.95), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
                         ((1.2, 0.46, 0.0), (1.2, -0.46, 0.0), (1.2, -0.46, 2.08), (1.2, 0.46, 2.08)),
                         1.0, 10, "automatic")
@@ -62,24 +60,13 @@ class Peer:
         return spin_until(self.executor, condition, timeout)
 
 
-def start_supervisor(workspace, log: Path, *overrides: str) -> subprocess.Popen:
-    """The FSM supervisor as a process with its params file and ``name:=value`` overrides."""
-    command = [str(workspace.executable(FSM.package, FSM.executable)), "--ros-args",
-               "--params-file", str(workspace.params_file("fsm_supervisor"))]
-    for override in overrides:
-        command += ["-p", override]
-    return subprocess.Popen(command, env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
-
-
 @pytest.fixture
 def supervisor(workspace, rclpy_context, tmp_path):
     peer = Peer(rclpy_context)
-    process = start_supervisor(workspace, tmp_path / "fsm.log", "approval_timeout:=4.0", "start_delay:=0.5",
-                               "required_nodes:=['fsm_test_peer']")
     peer.log_path = tmp_path / "fsm.log"
-    yield peer
-    process.send_signal(2)
-    assert process.wait(timeout=20) == 0
+    with node_process(workspace, "fsm_supervisor", peer.log_path, "approval_timeout:=4.0", "start_delay:=0.5",
+                      "required_nodes:=['fsm_test_peer']", timeout_s=20):
+        yield peer
     peer.node.destroy_node()
 
 
@@ -122,7 +109,7 @@ def test_a_killed_node_fails_the_task(workspace, rclpy_context, tmp_path):
                               env=workspace.environment(), stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
     peer = Peer(rclpy_context)
     log = tmp_path / "fsm.log"
-    fsm = start_supervisor(workspace, log, "start_delay:=0.5", "required_nodes:=['door_detector']")
+    fsm = start_node(workspace, "fsm_supervisor", log, "start_delay:=0.5", "required_nodes:=['door_detector']")
     try:
         assert peer.wait(lambda: peer.requests), log.read_text()
         # kill only once the supervisor itself has seen the node (its /diagnostics says so)
@@ -132,8 +119,7 @@ def test_a_killed_node_fails_the_task(workspace, rclpy_context, tmp_path):
         assert peer.wait(lambda: any("/door_detector is gone" in f for f in peer.failures), 10.0)
     finally:
         victim.kill()
-        fsm.send_signal(2)
-        assert fsm.wait(timeout=20) == 0
+        assert stop_node(fsm, 20) == 0
         peer.node.destroy_node()
 
 
@@ -141,7 +127,8 @@ def test_the_task_starts_only_when_the_required_nodes_are_up(workspace, rclpy_co
     """DETECT_DOOR's clock must not run while the graph is still starting."""
     peer = Peer(rclpy_context)
     log = tmp_path / "fsm.log"
-    fsm = start_supervisor(workspace, log, "start_delay:=0.2", "required_nodes:=['fsm_test_peer', 'fsm_test_late_node']")
+    fsm = start_node(workspace, "fsm_supervisor", log, "start_delay:=0.2",
+                     "required_nodes:=['fsm_test_peer', 'fsm_test_late_node']")
     late = None
     try:
         assert peer.wait(lambda: any("waiting for fsm_test_late_node" in m for m in peer.messages), 30.0), \
@@ -150,8 +137,7 @@ def test_the_task_starts_only_when_the_required_nodes_are_up(workspace, rclpy_co
         late = rclpy.create_node("fsm_test_late_node", context=rclpy_context)
         assert peer.wait(lambda: "DETECT_DOOR" in peer.states, 30.0), log.read_text()
     finally:
-        fsm.send_signal(2)
-        assert fsm.wait(timeout=20) == 0
+        assert stop_node(fsm, 20) == 0
         peer.node.destroy_node()
         if late is not None:
             late.destroy_node()

@@ -2,17 +2,15 @@
 (joint states, odometry at 20 Hz) and the detector (door estimate), and sends requests."""
 
 import math
-import subprocess
 from dataclasses import replace
 
 import pytest
 import rclpy
 from nav_msgs.msg import Odometry
-from ros_helpers import executor_for, spin_until
+from ros_helpers import executor_for, node_process, spin_until
 from sensor_msgs.msg import JointState
 from std_msgs.msg import String
 
-from door_bringup.graph_spec import GRAPH
 from door_contract.converters.trajectory import msg_to_joint_path
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import DoorEstimate, MotionRequest, OutcomeStatus, PlanningOutcome, decode, encode
@@ -25,7 +23,6 @@ from door_trajopt.library import MotionLibrary
 
 pytestmark = pytest.mark.ros  # starts rclpy nodes / DDS participants
 
-OPTIMIZER = next(launch for launch in GRAPH if launch.node_name == "trajectory_optimizer")
 # base at (-0.5, -0.12) facing +x, door plane x = 0, left hinge: the footstep planner's stand pose
 ESTIMATE = DoorEstimate(1.0, "odom", (-0.06, -0.321, 0.91), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
                         ((0.0, 0.457, 0.01), (0.0, -0.457, 0.01), (0.0, -0.457, 2.09), (0.0, 0.457, 2.09)),
@@ -33,13 +30,10 @@ ESTIMATE = DoorEstimate(1.0, "odom", (-0.06, -0.321, 0.91), (-1.0, 0.0, 0.0), Hi
 
 
 @pytest.fixture(scope="module")
-def optimizer(workspace):
-    process = subprocess.Popen([str(workspace.executable(OPTIMIZER.package, OPTIMIZER.executable)), "--ros-args",
-                                "--params-file", str(workspace.params_file("trajectory_optimizer"))],
-                               env=workspace.environment(), stdout=subprocess.DEVNULL, stderr=subprocess.STDOUT)
-    yield process
-    process.send_signal(2)
-    assert process.wait(timeout=30) == 0
+def optimizer(workspace, tmp_path_factory):
+    log = tmp_path_factory.mktemp("optimizer") / "trajectory_optimizer.log"
+    with node_process(workspace, "trajectory_optimizer", log) as process:
+        yield process
 
 
 class Robot:

@@ -9,6 +9,13 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
+from door_evaluation.trajopt.toy_problems import (
+    DOOR_ARC_CHAIN,
+    DOOR_ARC_LIMITS,
+    BenchmarkCase,
+    door_arc_case,
+    seed000_sized_case,
+)
 from door_trajopt.chomp import ChompOptions, ChompSolver, solve_chomp
 from door_trajopt.evaluation import ProblemEvaluator
 from door_trajopt.problem import (
@@ -21,13 +28,6 @@ from door_trajopt.problem import (
 )
 from door_trajopt.result import OptimizationResult, Outcome
 from door_trajopt.sqp import ConstraintHandling, SqpOptions, SqpSolver, solve_sqp
-from door_trajopt.toy_problems import (
-    DOOR_ARC_CHAIN,
-    DOOR_ARC_LIMITS,
-    BenchmarkCase,
-    door_arc_case,
-    seed000_sized_case,
-)
 
 Backend = Callable[[TrajectoryProblem, np.ndarray], OptimizationResult]
 

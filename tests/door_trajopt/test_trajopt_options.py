@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
+from door_evaluation.trajopt.toy_problems import door_arc_case, seed000_sized_case
 from door_trajopt.chomp import ChompOptions
 from door_trajopt.problem import (
     Constraint,
@@ -20,7 +21,6 @@ from door_trajopt.problem import (
 )
 from door_trajopt.qp_layout import SparsityPattern
 from door_trajopt.sqp import SqpOptions
-from door_trajopt.toy_problems import door_arc_case, seed000_sized_case
 
 
 @pytest.mark.parametrize(

@@ -2,17 +2,15 @@
 estimate (as the sim bridge and detector would) and sends requests."""
 
 import math
-import subprocess
 from dataclasses import replace
 
 import pytest
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
 from nav_msgs.msg import Odometry
-from ros_helpers import executor_for, spin_until
+from ros_helpers import executor_for, node_process, spin_until
 from std_msgs.msg import String
 
-from door_bringup.graph_spec import GRAPH
 from door_contract.converters.footsteps import path_to_footsteps
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus, PlanningOutcome, decode, encode
@@ -22,7 +20,6 @@ from door_contract.vocabulary import Foot, HingeSide
 
 pytestmark = pytest.mark.ros  # starts rclpy nodes / DDS participants
 
-PLANNER = next(launch for launch in GRAPH if launch.node_name == "footstep_planner")
 # Wall at x = 0, robot at x = -4 facing +x; left hinge at y = +0.457, handle near y = -0.39.
 ESTIMATE = DoorEstimate(0.0, "odom", (-0.06, -0.39, 0.91), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
                         ((0.0, 0.457, 0.0), (0.0, -0.457, 0.0), (0.0, -0.457, 2.08), (0.0, 0.457, 2.08)),
@@ -32,13 +29,8 @@ ESTIMATE = DoorEstimate(0.0, "odom", (-0.06, -0.39, 0.91), (-1.0, 0.0, 0.0), Hin
 @pytest.fixture(scope="module")
 def planner(workspace, tmp_path_factory):
     log = tmp_path_factory.mktemp("planner") / "planner.log"
-    process = subprocess.Popen([str(workspace.executable(PLANNER.package, PLANNER.executable)), "--ros-args",
-                                "--params-file", str(workspace.params_file("footstep_planner"))],
-                               env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
-    process.log = log
-    yield process
-    process.send_signal(2)
-    assert process.wait(timeout=20) == 0, log.read_text()
+    with node_process(workspace, "footstep_planner", log, timeout_s=20) as process:
+        yield process
 
 
 class Client:

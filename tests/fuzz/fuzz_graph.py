@@ -1,5 +1,6 @@
-"""What the fuzz suite shares: nodes as processes, and an observer that watches the robot, the
-door and every answer over real DDS, and plays whatever part of the graph a test needs.
+"""What the fuzz suite shares: an observer that watches the robot, the door and every answer
+over real DDS, and plays whatever part of the graph a test needs (the nodes under test are
+processes: ``ros_helpers.start_node``).
 
 Every case asserts three things (issue #12): the node lives, it answered as the contract
 promises, and the robot and the door did not move (``/joint_states``, ``/odom``,
@@ -11,7 +12,6 @@ from __future__ import annotations
 import subprocess
 import threading
 from dataclasses import dataclass
-from pathlib import Path
 
 import numpy as np
 import rclpy
@@ -20,7 +20,6 @@ from nav_msgs.msg import Path as PathMsg
 from ros_helpers import executor_for, spin_until
 from std_msgs.msg import String
 
-from door_bringup.graph_spec import GRAPH
 from door_contract.converters.footsteps import FootPlacement, path_to_footsteps
 from door_contract.converters.joint_state import joint_state_to_positions
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
@@ -33,24 +32,6 @@ from door_contract.vocabulary import Foot, HingeSide
 ESTIMATE = DoorEstimate(0.0, "odom", (-0.06, -0.39, 0.91), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
                         ((0.0, 0.457, 0.0), (0.0, -0.457, 0.0), (0.0, -0.457, 2.08), (0.0, 0.457, 2.08)),
                         1.0, 10, "automatic")
-
-
-def start_node(workspace, node_name: str, log: Path, *overrides: str) -> subprocess.Popen:
-    """One node of the graph as a process with its params file and ``name:=value`` overrides."""
-    launch = next(launch for launch in GRAPH if launch.node_name == node_name)
-    command = [str(workspace.executable(launch.package, launch.executable)), "--ros-args",
-               "--params-file", str(workspace.params_file(node_name))]
-    for override in overrides:
-        command += ["-p", override]
-    process = subprocess.Popen(command, env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
-    process.log = log
-    return process
-
-
-def stop_node(process: subprocess.Popen) -> int:
-    if process.poll() is None:
-        process.send_signal(2)
-    return process.wait(timeout=30)
 
 
 STILL_BASE = 2e-3

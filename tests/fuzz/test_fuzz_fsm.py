@@ -7,7 +7,8 @@ import signal
 
 import numpy as np
 import pytest
-from fuzz_graph import ESTIMATE, STILL_BASE, Observer, start_node, stop_node
+from fuzz_graph import ESTIMATE, STILL_BASE, Observer
+from ros_helpers import start_node, stop_node
 from std_msgs.msg import String
 
 from door_contract.converters.footsteps import footsteps_to_path

@@ -6,7 +6,8 @@ import json
 from dataclasses import replace
 
 import pytest
-from fuzz_graph import ESTIMATE, STILL_BASE, Observer, start_node, stop_node
+from fuzz_graph import ESTIMATE, STILL_BASE, Observer
+from ros_helpers import start_node, stop_node
 
 from door_contract.payloads import FootstepRequest, MotionRequest, OutcomeStatus, PlanningCancel, encode
 

@@ -7,9 +7,10 @@ import math
 
 import numpy as np
 import pytest
-from fuzz_graph import STILL_BASE, Observer, start_node, stop_node
+from fuzz_graph import STILL_BASE, Observer
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path as PathMsg
+from ros_helpers import start_node, stop_node
 from std_srvs.srv import SetBool
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 

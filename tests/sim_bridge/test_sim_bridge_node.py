@@ -6,7 +6,7 @@ import subprocess
 import numpy as np
 import pytest
 import rclpy
-from ros_helpers import executor_for, spin_until
+from ros_helpers import executor_for, node_process, spin_until
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.converters.joint_state import joint_state_to_positions
@@ -22,12 +22,8 @@ BRIDGE = next(launch for launch in GRAPH if launch.node_name == "sim_bridge")
 @pytest.fixture(scope="module")
 def bridge(workspace, tmp_path_factory):
     log = tmp_path_factory.mktemp("bridge") / "sim_bridge.log"
-    process = subprocess.Popen([str(workspace.executable(BRIDGE.package, BRIDGE.executable)), "--ros-args",
-                                "--params-file", str(workspace.params_file("sim_bridge")), "-p", "camera_rate:=2.0"],
-                               env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
-    yield process, log
-    process.send_signal(2)
-    assert process.wait(timeout=30) == 0, log.read_text()
+    with node_process(workspace, "sim_bridge", log, "camera_rate:=2.0") as process:
+        yield process, log
 
 
 class Listener:

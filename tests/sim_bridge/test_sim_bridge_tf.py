@@ -2,15 +2,13 @@
 local) names every link /tf and /tf_static carry, its meshes resolve, and a link's composed
 transform equals the sim's own pose of it (the head camera's, published on /head_camera/pose)."""
 
-import subprocess
 import xml.etree.ElementTree as ElementTree
 
 import numpy as np
 import pytest
 import rclpy
-from ros_helpers import executor_for, spin_until
+from ros_helpers import executor_for, node_process, spin_until
 
-from door_bringup.graph_spec import GRAPH
 from door_contract.converters.pose import pose_stamped_to_matrix
 from door_contract.converters.transforms import tf_message_frames
 from door_contract.frames import Frame
@@ -21,20 +19,14 @@ from door_robot.meshes import PACKAGE_URI, resolve_package_uri
 from door_robot.profile import load_profile
 from door_sim_bridge.tf_tree import compose, urdf_joints
 
-BRIDGE = next(launch for launch in GRAPH if launch.node_name == "sim_bridge")
 pytestmark = pytest.mark.ros
 
 
 @pytest.fixture(scope="module")
 def bridge(workspace, tmp_path_factory):
     log = tmp_path_factory.mktemp("bridge_tf") / "sim_bridge.log"
-    process = subprocess.Popen([str(workspace.executable(BRIDGE.package, BRIDGE.executable)), "--ros-args",
-                                "--params-file", str(workspace.params_file("sim_bridge")),
-                                "-p", "camera_rate:=2.0", "-p", "camera_width:=160", "-p", "camera_height:=120"],
-                               env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
-    yield log
-    process.send_signal(2)
-    assert process.wait(timeout=30) == 0, log.read_text()
+    with node_process(workspace, "sim_bridge", log, "camera_rate:=2.0", "camera_width:=160", "camera_height:=120"):
+        yield log
 
 
 class TfListener:

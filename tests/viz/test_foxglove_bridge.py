@@ -4,9 +4,7 @@ their ROS 2 schemas, subscribes to the FSM's approval request and decodes it (CD
 answered with a status; the URDF's meshes are served, nothing else is."""
 
 import re
-import subprocess
 import time
-from pathlib import Path
 
 import pytest
 import rclpy
@@ -14,7 +12,7 @@ from foxglove_client import FoxgloveClient
 from rcl_interfaces.msg import Log
 from rclpy.qos import DurabilityPolicy, QoSProfile
 from rclpy.serialization import deserialize_message
-from ros_helpers import executor_for, spin_until
+from ros_helpers import executor_for, spin_until, start_node
 from std_msgs.msg import String
 
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
@@ -28,17 +26,6 @@ ESTIMATE = DoorEstimate(0.0, "odom", (1.2, -0.35, 0.95), (-1.0, 0.0, 0.0), Hinge
                         ((1.2, 0.46, 0.0), (1.2, -0.46, 0.0), (1.2, -0.46, 2.08), (1.2, 0.46, 2.08)),
                         1.0, 10, "automatic")
 MESH = "package://example-robot-data/robots/talos_data/meshes/arm/arm_1_collision.STL"
-
-
-def _start(workspace, executable: tuple[str, str], log: Path, *overrides: str) -> subprocess.Popen:
-    package, name = executable
-    command = [str(workspace.executable(package, name)), "--ros-args"]
-    params = workspace.params_file({"fsm_supervisor": "fsm_supervisor"}.get(name, name))
-    if params.is_file():
-        command += ["--params-file", str(params)]
-    for override in overrides:
-        command += ["-p", override]
-    return subprocess.Popen(command, env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
 
 
 class Detector:
@@ -64,9 +51,9 @@ class Detector:
 def graph(workspace, rclpy_context, tmp_path):
     detector = Detector(rclpy_context)
     bridge_log, fsm_log = tmp_path / "foxglove_bridge.log", tmp_path / "fsm.log"
-    bridge = _start(workspace, ("door_viz", "foxglove_bridge"), bridge_log, "port:=0", "discovery_period:=0.2")
-    fsm = _start(workspace, ("door_fsm", "fsm_supervisor"), fsm_log, "approval_timeout:=120.0", "start_delay:=0.5",
-                 "required_nodes:=['foxglove_test_peer']", "autonomy:=supervised")
+    bridge = start_node(workspace, "foxglove_bridge", bridge_log, "port:=0", "discovery_period:=0.2")
+    fsm = start_node(workspace, "fsm_supervisor", fsm_log, "approval_timeout:=120.0", "start_delay:=0.5",
+                     "required_nodes:=['foxglove_test_peer']", "autonomy:=supervised")
     client = None
     try:
         port = []

@@ -3,13 +3,11 @@ plan and a trajectory (with the robot's joint states and odometry, streamed as t
 which the node samples only when a trajectory arrives) it publishes one latched picture with the
 door, its swing, the footsteps and the hand path; bad input changes nothing."""
 
-import subprocess
-
 import numpy as np
 import pytest
 import rclpy
 from nav_msgs.msg import Odometry
-from ros_helpers import executor_for, spin_until
+from ros_helpers import executor_for, node_process, spin_until
 from std_msgs.msg import String
 from test_proposal_shapes import ESTIMATE, STEPS
 
@@ -29,12 +27,8 @@ pytestmark = pytest.mark.ros
 @pytest.fixture
 def markers_node(workspace, tmp_path):
     log = tmp_path / "proposal_markers.log"
-    command = [str(workspace.executable("door_viz", "proposal_markers")), "--ros-args",
-               "--params-file", str(workspace.params_file("proposal_markers"))]
-    process = subprocess.Popen(command, env=workspace.environment(), stdout=log.open("w"), stderr=subprocess.STDOUT)
-    yield log
-    process.send_signal(2)
-    assert process.wait(timeout=30) == 0, log.read_text()
+    with node_process(workspace, "proposal_markers", log):
+        yield log
 
 
 def test_picture_of_the_proposals(markers_node, rclpy_context):

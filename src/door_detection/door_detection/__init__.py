@@ -13,8 +13,7 @@ ROS-free core (no rclpy); the node ``door_detector_node`` wraps it.  Public API:
   ``transformed()``), :class:`~door_detection.estimate.DetectionOutcome`,
   :class:`~door_detection.options.DetectionOptions`.
 
-Script: ``python -m door_detection.evaluate_photos`` (2-D stage on real photos). The
-evaluations on the simulator (Table II, the benchmark) are in ``door_evaluation.detection``:
-this package does not depend on the simulator.
+The evaluations (Table II on the simulator, the benchmark, the 2-D stage on real photos) are
+in ``door_evaluation.detection``: this package does not depend on the simulator.
 Importing the package imports nothing heavy.
 """

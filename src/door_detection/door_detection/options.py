@@ -111,8 +111,8 @@ class DetectionOptions:
     """Contrast limit of the histogram equalisation (× the mean bin height), [0, 40]; 0 is the
     paper's plain equalisation (Sec. III-A: "histogram equalization"), which erases small
     steps next to a dominant grey (see ``preprocessing.equalise_luma``). Any clip keeps an
-    11-level step of a white scene; on the 31 real photos (``evaluate_photos``) 4 found as
-    many doors as plain equalisation (17 of 35) and 2 only 12."""
+    11-level step of a white scene; on the 31 real photos (``door_evaluation.detection.evaluate_photos``)
+    4 found as many doors as plain equalisation (17 of 35) and 2 only 12."""
     bilateral_diameter: int = 5
     """Bilateral filter neighbourhood diameter (px of the scaled image), [1, 15]
     (Sec. III-A: "a bilateral filter is applied to smooth the image")."""

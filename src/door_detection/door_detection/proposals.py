@@ -14,7 +14,7 @@ lines cover) + uniformity (1 − σ_inside/σ_image, a door is one colour) + ``S
 × width fraction + ``HANDLE_BONUS`` if a handle blob is found
 (:func:`~door_detection.handle.find_handle`), then thinned by non-maximum suppression.
 Used on the real photographs by
-:mod:`~door_detection.evaluate_photos`.
+:mod:`~door_evaluation.detection.evaluate_photos`.
 """
 
 from __future__ import annotations

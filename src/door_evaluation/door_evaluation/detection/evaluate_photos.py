@@ -1,6 +1,6 @@
 """Evaluation of the 2-D stage on real door photographs with YOLO labels.
 
-``python -m door_detection.evaluate_photos [--data DIR] [--limit N] [--threshold S]``
+``python -m door_evaluation.detection.evaluate_photos [--data DIR] [--limit N] [--threshold S]``
 
 The photographs (``shared/data/doors/detectdoor``: 27 labelled doors-with-handles and 4
 images without annotations; classes 0 door, 1 handle, 2 cabinet door, 3 refrigerator
@@ -22,7 +22,6 @@ Reported (IoU ≥ 0.5 against the labelled boxes):
 from __future__ import annotations
 
 import argparse
-import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -34,6 +33,7 @@ from door_detection.errors import InputError
 from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
 from door_detection.proposals import Box, DoorProposal, iou, propose_doors
+from door_robot.locations import shared_data_dir
 
 MAX_SIDE = 1024
 MIN_LINE_FRACTION = 0.25
@@ -84,9 +84,7 @@ class PhotoReport:
 
 def default_data_dir() -> Path:
     """``$DOOR_SHARED_DATA/doors/detectdoor``, else ``<repo>/../shared/data/doors/detectdoor``."""
-    root = os.environ.get("DOOR_SHARED_DATA")
-    base = Path(root) if root else Path(__file__).resolve().parents[3].parent / "shared" / "data"
-    return base / "doors" / "detectdoor"
+    return shared_data_dir() / "doors" / "detectdoor"
 
 
 def load_dataset(folder: Path) -> list[LabelledImage]:

@@ -1,6 +1,6 @@
-"""Footstep planner benchmark: ``python -m footstep_planner.benchmark [--repeats N] [--grid coarse]``.
+"""Footstep planner benchmark: ``python -m door_evaluation.footsteps.benchmark [--repeats N] [--grid coarse]``.
 
-Sweeps the full ranges (:mod:`~footstep_planner.benchmark_cases`): every approach to the
+Sweeps the full ranges (:mod:`~door_evaluation.footsteps.benchmark_cases`): every approach to the
 stand pose (start 1.0-4.0 m from the door plane, +-0.6 m aside, +-0.6 rad turned; push and
 pull, left and right hinge, doors 0.80-1.00 m) and every leg of every passage (push and
 pull, same doors), planned as the node plans them: the robot profile's walking limits, the
@@ -25,9 +25,9 @@ import time
 from dataclasses import dataclass, replace
 
 from door_contract.parameters import validate_all
+from door_evaluation.footsteps.benchmark_cases import COARSE, WIDTHS, PlanningCase, approach_cases, passage_cases
 from door_robot.profile import load_profile
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.benchmark_cases import COARSE, WIDTHS, PlanningCase, approach_cases, passage_cases
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import PLANNER_PARAMETERS
 from footstep_planner.robot_limits import options_for_walking

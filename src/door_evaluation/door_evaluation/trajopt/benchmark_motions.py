@@ -1,6 +1,6 @@
 """Benchmark: each door motion on TALOS, both backends ([Banerjee 2015]: 10.1–21 s per plan).
 
-    python -m door_trajopt.benchmark_motions [--repeats 3]
+    python -m door_evaluation.trajopt.benchmark_motions [--repeats 3]
 
 The door stands where the footstep planner's stand pose puts it, and the motions are
 chained as the FSM runs them, each from the previous one's end:

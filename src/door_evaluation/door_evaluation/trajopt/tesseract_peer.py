@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from door_trajopt.peer_problems import PeerProblem
+from door_evaluation.trajopt.peer_problems import PeerProblem
 
 INSTALL_COMMAND = ".venv/bin/pip install tesseract-robotics==0.5.1"
 GROUP = "manipulator"

@@ -1,8 +1,8 @@
 """Peer benchmark: the project's SQP and CHOMP beside tesseract's TrajOpt, on the same problems.
 
-    python -m door_trajopt.benchmark_peers [--repeats 3]
+    python -m door_evaluation.trajopt.benchmark_peers [--repeats 3]
 
-Two 7-DOF TALOS arm problems (:mod:`door_trajopt.peer_problems`: T = 100, smoothness cost,
+Two 7-DOF TALOS arm problems (:mod:`door_evaluation.trajopt.peer_problems`: T = 100, smoothness cost,
 joint limits, a 6-D reach goal; a door arc of 240 pose equalities), one stationary initial
 guess, one Pinocchio scorer for every solution. Each solver is timed from problem set-up
 to solution (TrajOpt constructs its problem, ours build their solver), the minimum of
@@ -21,12 +21,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from door_evaluation.trajopt.peer_problems import PeerProblem, Score, peer_problems, score, trajectory_problem
+from door_evaluation.trajopt.tesseract_peer import INSTALL_COMMAND, TrajOptPeer, tesseract_available
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_trajopt.chomp import ChompOptions, ChompSolver
-from door_trajopt.peer_problems import PeerProblem, Score, peer_problems, score, trajectory_problem
 from door_trajopt.sqp import ConstraintHandling, SqpOptions, SqpSolver
-from door_trajopt.tesseract_peer import INSTALL_COMMAND, TrajOptPeer, tesseract_available
 
 TOLERANCE = 1e-5  # m / rad: every solver's constraint tolerance (the motion library's)
 MAX_ITERATIONS = 300

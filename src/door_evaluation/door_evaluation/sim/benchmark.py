@@ -1,6 +1,6 @@
 """Benchmark of the simulation bridge: physics real-time factor and camera frame rates.
 
-``python -m door_sim_bridge.benchmark`` prints one row per figure: the seed papers' figure
+``python -m door_evaluation.sim.benchmark`` prints one row per figure: the seed papers' figure
 (none exists for the simulator: "n/a"), our target, what this machine achieves and the ratio
 ours / target (≥ 1 meets the target). Times are CPU seconds of this process (one core), so
 other programs running on the machine do not distort them. Targets: the physics (robot +

@@ -4,12 +4,8 @@ measures, both backends find the same optimum, and the benchmark runs without te
 import numpy as np
 import pytest
 
-from door_robot.kinematics import RobotKinematics
-from door_robot.profile import load_profile
-from door_trajopt import benchmark_peers
-from door_trajopt.chomp import ChompOptions, ChompSolver
-from door_trajopt.evaluation import ProblemEvaluator
-from door_trajopt.peer_problems import (
+from door_evaluation.trajopt import benchmark_peers
+from door_evaluation.trajopt.peer_problems import (
     ARC_POSES,
     door_arc_problem,
     peer_problems,
@@ -17,6 +13,10 @@ from door_trajopt.peer_problems import (
     score,
     trajectory_problem,
 )
+from door_robot.kinematics import RobotKinematics
+from door_robot.profile import load_profile
+from door_trajopt.chomp import ChompOptions, ChompSolver
+from door_trajopt.evaluation import ProblemEvaluator
 from door_trajopt.sqp import SqpOptions, SqpSolver
 
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import pytest
 
-from footstep_planner.benchmark import PAPER_FIGURE, main
+from door_evaluation.footsteps.benchmark import PAPER_FIGURE, main
 
 
 def test_benchmark_prints_a_row_per_family_and_every_search_succeeds(capsys: pytest.CaptureFixture[str]) -> None:

@@ -1,6 +1,6 @@
 """Benchmark of the backends on the [Zucker 2013]-sized door opening problem.
 
-Run ``python -m door_trajopt.benchmark_backends`` (``--help`` for options).
+Run ``python -m door_evaluation.trajopt.benchmark_backends`` (``--help`` for options).
 [Zucker 2013] (HUBO+, Sec. III-A) reports ~40 s for its constrained CHOMP with
 ``n = 104``, ``m = 9``, ``k = 181`` on a 2.5 GHz Core 2 Duo, dominated by the
 dense ``181 x 181`` solve for ``Q``.  This prints, for constrained CHOMP, the
@@ -24,12 +24,12 @@ from typing import Protocol
 
 from scipy.optimize import Bounds, minimize
 
+from door_evaluation.trajopt.toy_problems import BenchmarkCase, seed000_sized_case
 from door_trajopt.chomp import ChompSolver
 from door_trajopt.evaluation import PointValues, ProblemEvaluator, RunSummary, build_result
 from door_trajopt.problem import FloatArray, TrajectoryProblem
 from door_trajopt.result import OptimizationResult
 from door_trajopt.sqp import ConstraintHandling, SqpOptions, SqpSolver
-from door_trajopt.toy_problems import BenchmarkCase, seed000_sized_case
 
 
 class Solver(Protocol):

@@ -1,5 +1,4 @@
-"""The photo evaluation and the progress bar run and return sane numbers (no timing asserts).
-The evaluations on the simulator are tested in tests/door_evaluation."""
+"""The photo evaluation runs and returns sane numbers on real photographs (no timing asserts)."""
 
 from __future__ import annotations
 
@@ -7,8 +6,7 @@ import math
 
 import pytest
 
-from door_detection import evaluate_photos
-from door_detection.progress import ProgressBar
+from door_evaluation.detection import evaluate_photos
 
 
 def test_photo_evaluation_on_three_labelled_photos(shared_data) -> None:
@@ -30,14 +28,3 @@ def test_photo_labels_are_parsed_in_pixels(shared_data) -> None:
     door = images["000c9e454bbf6d0d"].of_class(evaluate_photos.DOOR)[0]   # 678×1024, cx 0.477
     assert door[0] == pytest.approx((0.477344 - 0.479688 / 2) * 678, abs=0.5)
     assert images["00eb261110ac46c5"].boxes == ()                         # a negative
-
-
-def test_progress_bar_writes_to_its_stream() -> None:
-    import io
-
-    stream = io.StringIO()
-    bar = ProgressBar(2, stream=stream)
-    bar.advance("one")
-    bar.advance("two")
-    bar.close()
-    assert "2/2" in stream.getvalue() and stream.getvalue().endswith("\n")
