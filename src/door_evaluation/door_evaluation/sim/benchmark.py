@@ -5,24 +5,40 @@
 ours / target (≥ 1 meets the target). Times are CPU seconds of this process (one core), so
 other programs running on the machine do not distort them. Targets: the physics (robot +
 door, 240 Hz, no camera) at least 5× faster than real time, so a Monte-Carlo campaign and the
-real-time node both have headroom (also under the other physics settings tried against the
+real-time node both have headroom — standing, with an arm moving, walking (the walking
+controller's pattern and IK every tick, the DCM feedback), and walking with the graph's head
+camera rendering at its 2 Hz (also under the other physics settings tried against the
 lift-off dip of issue #11: 400 solver sweeps, 480 Hz, the direct solver); the head camera at least at the bridge's default
 publishing rate (``CameraConfig.frame_rate_hz``) at the MultiSense SL's 1024×544 and at VGA.
 """
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
-from door_contract.vocabulary import Side
-from door_sim_bridge.execution import TrajectoryExecution
-from door_sim_bridge.world import CameraConfig, ContactSolver, DoorPart, DoorWorld, RobotVisuals, WorldConfig
+from door_contract.converters.footsteps import FootPlacement
+from door_contract.payloads import OutcomeStatus
+from door_contract.vocabulary import Foot, Side
+from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
+from door_sim_bridge.world import (
+    CameraConfig,
+    ContactSolver,
+    DoorPart,
+    DoorWorld,
+    RobotVisuals,
+    StanceConfig,
+    WorldConfig,
+)
 
 PHYSICS_SECONDS = 10.0  # simulated seconds per physics measurement
+WALK_STRIDES, WALK_STRIDE = 6, 0.2  # the walking measurement's plan (strides, m)
+WALK_STANCE = StanceConfig(distance=3.0)  # far enough from the door for the walk
+GRAPH_CAMERA_HZ = 2.0  # the graph's head camera rate (params/sim_bridge.yaml camera_rate)
 CAMERA_FRAMES = 10
 RTF_TARGET = 5.0
 
@@ -75,6 +91,42 @@ def physics_busy(world: DoorWorld) -> float:
     return (world.time - begin) / wall
 
 
+def straight_walk(world: DoorWorld, strides: int = WALK_STRIDES, stride: float = WALK_STRIDE) -> list[FootPlacement]:
+    """``strides`` strides of ``stride`` m straight ahead, the trailing foot brought alongside."""
+    feet = world.foot_placements()
+    plan = []
+    for index in range(strides + 1):
+        foot = Foot.LEFT if index % 2 == 0 else Foot.RIGHT
+        sole = feet[foot]
+        advance = stride * min(index + 1, strides)
+        plan.append(FootPlacement(foot, sole.x + advance * math.cos(sole.yaw), sole.y + advance * math.sin(sole.yaw),
+                                  sole.yaw))
+    return plan
+
+
+def physics_walking(world: DoorWorld, camera_hz: float = 0.0, strides: int = WALK_STRIDES) -> float:
+    """Real-time factor walking :func:`straight_walk` of ``strides`` (the walking pattern planned
+    at its first tick included), rendering a head-camera frame every ``1 / camera_hz`` simulated
+    s (0: none)."""
+    execution = FootstepExecution(world, straight_walk(world, strides))
+    if execution.done:
+        raise RuntimeError(f"benchmark walk rejected: {execution.result}")
+    begin, rendered = world.time, 0
+
+    def walk() -> None:
+        nonlocal rendered
+        while not execution.command():
+            world.step()
+            if camera_hz > 0.0 and world.time - begin >= rendered / camera_hz:
+                world.render()
+                rendered += 1
+
+    wall = _timed(walk)
+    if execution.result is None or execution.result.status is not OutcomeStatus.SUCCESS:
+        raise RuntimeError(f"benchmark walk did not succeed: {execution.result}")
+    return (world.time - begin) / wall
+
+
 def camera_rate(width: int, height: int, visuals: RobotVisuals = RobotVisuals.ARMS) -> float:
     """Rendered RGB-D frames per CPU second (TinyRenderer, one core)."""
     camera = CameraConfig(width=width, height=height, vertical_fov_deg=45.0 if width > 640 else 60.0,
@@ -98,6 +150,13 @@ def run() -> list[BenchmarkRow]:
                          idle, "×"),
             BenchmarkRow("physics real-time factor, arm moving + door swinging", "n/a", RTF_TARGET,
                          busy, "×")]
+    with DoorWorld(WorldConfig(stance=WALK_STANCE)) as world:
+        rows.append(BenchmarkRow(f"physics real-time factor, walking {WALK_STRIDES} × {WALK_STRIDE} m, "
+                                 "camera off", "n/a", RTF_TARGET, physics_walking(world), "×"))
+    graph_camera = CameraConfig(width=640, height=480, vertical_fov_deg=60.0)
+    with DoorWorld(WorldConfig(stance=WALK_STANCE, camera=graph_camera)) as world:
+        rows.append(BenchmarkRow(f"physics real-time factor, walking, camera {GRAPH_CAMERA_HZ:g} Hz 640×480",
+                                 "n/a", RTF_TARGET, physics_walking(world, GRAPH_CAMERA_HZ), "×"))
     for name, config in PHYSICS_VARIANTS:
         with DoorWorld(config) as world:
             rows.append(BenchmarkRow(f"physics real-time factor, idle, {name}", "n/a", RTF_TARGET,
