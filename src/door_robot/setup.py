@@ -14,9 +14,10 @@ setup(
     data_files=[
         ("share/ament_index/resource_index/packages", [f"resource/{PACKAGE}"]),
         (f"share/{PACKAGE}", ["package.xml"]),
-        # The robot profiles (params/robot_*.yaml of the repository), found here when installed
-        # (door_robot.locations.params_dir; the folder name is locations.PROFILES_SHARE).
-        (f"share/{PACKAGE}/profiles", sorted(glob("../../params/robot_*.yaml"))),
+        # The robot profiles, this package's own profiles/ (the checkout's params/ links to them),
+        # found in the share when installed (door_robot.locations.params_dir; the folder name is
+        # locations.PROFILES_SHARE). Only paths inside this folder: the package builds anywhere.
+        (f"share/{PACKAGE}/profiles", sorted(glob("profiles/robot_*.yaml"))),
     ],
     install_requires=["setuptools"],
     zip_safe=True,

@@ -142,5 +142,6 @@ def test_the_installed_door_robot_finds_the_robot_profiles_in_its_own_share(work
     share = workspace.install / "door_robot" / "share" / "door_robot" / "profiles"
     assert Path(module).is_relative_to(workspace.install / "door_robot")  # the installed copy, not the sources
     assert Path(profile) == share / "robot_talos.yaml"
-    assert {p.name for p in share.iterdir()} == {p.name for p in (workspace.root / "params").glob("robot_*.yaml")}
+    sources = workspace.root / "src" / "door_robot" / "profiles"
+    assert {p.name for p in share.iterdir()} == {p.name for p in sources.glob("robot_*.yaml")}
     assert not list((workspace.install / "door_bringup" / "share" / "door_bringup" / "params").glob("robot_*"))

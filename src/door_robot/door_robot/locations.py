@@ -1,8 +1,10 @@
 """Where profiles, URDFs and the shared test data are found (no globals: plain functions).
 
-* the robot profiles ``robot_<name>.yaml`` are in ``$DOOR_PARAMS_DIR``, else in the checkout's
-  ``params/``, else (installed) in door_robot's own share, ``share/door_robot/profiles``
-  (door_robot's setup.py installs them there: this package never looks into another's share);
+* the robot profiles ``robot_<name>.yaml`` are in ``$DOOR_PARAMS_DIR``, else (running from the
+  sources) in this package's own ``profiles/`` (``src/door_robot/profiles``; the checkout's
+  ``params/`` links to each), else (installed) in door_robot's own share,
+  ``share/door_robot/profiles`` (door_robot's setup.py installs them there: this package never
+  looks into another's share, nor outside its own folder);
 * ``package: example-robot-data`` URDFs live under ``<site-packages>/cmeel.prefix/share``;
 * ``shared_data:`` URDFs live under ``$DOOR_SHARED_DATA`` or ``<repo>/../shared/data``.
 """
@@ -30,28 +32,31 @@ def checkout_of_this_module() -> Path | None:
     return find_checkout(Path(__file__))
 
 
-def checkout_of_these_sources() -> Path | None:
-    """The checkout when this module runs from its sources (``src/door_robot/door_robot``), None
-    when it runs installed (even from the colcon install inside a checkout: an installed
-    package reads its own share)."""
-    checkout = checkout_of_this_module()
-    if checkout is None or not Path(__file__).resolve().is_relative_to(checkout / "src"):
-        return None
-    return checkout
+def package_folder_of_these_sources() -> Path | None:
+    """door_robot's package folder (``src/door_robot``: its package.xml, setup.py and profiles)
+    when this module runs from its sources, None when it runs installed (even from the colcon
+    install inside a checkout: an installed package reads its own share). Found from this file
+    alone, not from the checkout's layout: the package's files travel with its folder (a source
+    tarball, a build of this one package)."""
+    folder = Path(__file__).resolve().parents[1]
+    if (folder / "package.xml").is_file() and (folder / "setup.py").is_file():
+        return folder
+    return None
 
 
 PROFILES_SHARE = "profiles"
-"""The folder of door_robot's share directory the robot profiles are installed in."""
+"""The folder of the robot profiles: in door_robot's package folder, and in its share directory
+(setup.py installs the one as the other)."""
 
 
 def params_dir() -> Path:
-    """The folder of the robot profiles: $DOOR_PARAMS_DIR, else the checkout's params/ (running from the sources), else
-    ``share/door_robot/profiles`` (installed; found through the ament index)."""
+    """The folder of the robot profiles: $DOOR_PARAMS_DIR, else ``src/door_robot/profiles`` (running from the
+    sources), else ``share/door_robot/profiles`` (installed; found through the ament index)."""
     if "DOOR_PARAMS_DIR" in os.environ:
         return Path(os.environ["DOOR_PARAMS_DIR"])
-    checkout = checkout_of_these_sources()
-    if checkout is not None:
-        return checkout / "params"
+    sources = package_folder_of_these_sources()
+    if sources is not None:
+        return sources / PROFILES_SHARE
     from ament_index_python.packages import get_package_share_directory
 
     return Path(get_package_share_directory("door_robot")) / PROFILES_SHARE
