@@ -1,6 +1,5 @@
 """ament_python package door_bringup: Runs the graph without ros2 launch, records and plays rosbag2 bags, operator console."""
 
-import os
 from glob import glob
 
 from setuptools import find_packages, setup
@@ -16,10 +15,10 @@ setup(
         ("share/ament_index/resource_index/packages", [f"resource/{PACKAGE}"]),
         (f"share/{PACKAGE}", ["package.xml"]),
         (f"share/{PACKAGE}/launch", glob("launch/*.launch.py")),
-        # The repository's node parameter files, for installed use; the robot profiles
-        # (params/robot_*.yaml) are door_robot's and installed by door_robot.
-        (f"share/{PACKAGE}/params", sorted(p for p in glob("../../params/*.yaml")
-                                           if not os.path.basename(p).startswith("robot_"))),
+        # The node parameter files, this package's own params/ (the checkout's params/ links to
+        # them), for installed use (launch/door_task.launch.py). Only paths inside this folder:
+        # the package builds anywhere. The robot profiles they name are door_robot's.
+        (f"share/{PACKAGE}/params", sorted(glob("params/*.yaml"))),
     ],
     install_requires=["setuptools"],
     zip_safe=True,

@@ -145,3 +145,12 @@ def test_the_installed_door_robot_finds_the_robot_profiles_in_its_own_share(work
     sources = workspace.root / "src" / "door_robot" / "profiles"
     assert {p.name for p in share.iterdir()} == {p.name for p in sources.glob("robot_*.yaml")}
     assert not list((workspace.install / "door_bringup" / "share" / "door_bringup" / "params").glob("robot_*"))
+
+
+def test_the_installed_door_bringup_has_its_node_parameter_files(workspace):
+    """door_bringup installs its own params/ (what launch/door_task.launch.py reads installed)."""
+    share = workspace.install / "door_bringup" / "share" / "door_bringup" / "params"
+    sources = workspace.root / "src" / "door_bringup" / "params"
+    assert {p.name for p in share.glob("*.yaml")} == {p.name for p in sources.glob("*.yaml")} \
+        >= {f"{launch.node_name}.yaml" for launch in GRAPH}
+

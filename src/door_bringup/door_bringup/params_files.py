@@ -2,9 +2,12 @@
 
     python -m door_bringup.params_files          # rewrite every node's params file
 
-A test checks that the files and the specs agree, so run this after changing a spec. The specs
-also say which nodes take the robot profile (:func:`robot_nodes`): the main job's ``--robot``
-reaches exactly those, and the choices are the profiles there are (:func:`robot_names`).
+A test checks that the files and the specs agree, so run this after changing a spec. The files
+are door_bringup's own, ``src/door_bringup/params/<node>.yaml`` (installed in its share);
+``params/<node>.yaml`` links to each and is written through, so a new node needs both its file
+there and the link (tests check both). The specs also say which nodes take the robot profile
+(:func:`robot_nodes`): the main job's ``--robot`` reaches exactly those, and the choices are the
+profiles there are (:func:`robot_names`).
 """
 
 from __future__ import annotations
@@ -68,8 +71,9 @@ def params_file_text(node_name: str, specs: tuple[ParameterSpec, ...]) -> str:
 def main() -> int:
     workspace = Workspace(repository_root())
     for node_name, specs in SPECS_BY_NODE.items():
-        workspace.params_file(node_name).write_text(params_file_text(node_name, specs))
-        print(f"wrote {workspace.params_file(node_name)}")
+        path = workspace.params_file(node_name)
+        path.write_text(params_file_text(node_name, specs))
+        print(f"wrote {path.resolve()}")
     return 0
 
 

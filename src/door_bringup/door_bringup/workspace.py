@@ -48,6 +48,9 @@ class Workspace:
 
     @property
     def params(self) -> Path:
+        """The checkout's ``params/``, the paths the README and the nodes' command lines show: links
+        to the files the packages own (door_bringup's ``src/door_bringup/params``: the node
+        parameter files and the Fast DDS profile; door_robot's ``src/door_robot/profiles``)."""
         return self.root / "params"
 
     def package_prefixes(self) -> list[Path]:
@@ -71,8 +74,9 @@ class Workspace:
         """``base`` (default: os.environ) plus what sourcing ``install/setup.sh`` would set.
 
         ``ROS_AUTOMATIC_DISCOVERY_RANGE`` defaults to LOCALHOST: no DDS traffic leaves the
-        machine unless the user asks for it. The Fast DDS profile in params/ shortens the
-        participant lease so a killed node leaves the graph in ~2 s.
+        machine unless the user asks for it. door_bringup's Fast DDS profile
+        (params/fastdds_profile.xml) shortens the participant lease so a killed node leaves the
+        graph in ~2 s.
         """
         env = dict(os.environ if base is None else base)
         prefixes = self.package_prefixes()
