@@ -2,12 +2,16 @@
 imports — message packages it reaches through door_contract's Topics/Services included — and
 nothing it does not, with keys rosdep resolves; the keys rosdep cannot (or must not) install are exactly
 docker/pip-keys.txt, which the image installs from requirements.txt with pip instead; no ROS
-wheels from PyPI; no venv, runs or build trees in the build context."""
+wheels from PyPI; no venv, runs or build trees in the build context, and every link in it
+(params/, ros_ws/src) resolves inside it."""
 
 import ast
+import os
 import re
 import sys
 import xml.etree.ElementTree as ElementTree
+from fnmatch import fnmatch
+from pathlib import Path, PurePosixPath
 
 import pytest
 
@@ -125,3 +129,36 @@ def test_dockerfile_takes_ros_from_the_image_and_only_the_rest_from_pypi(workspa
 def test_dockerignore_leaves_out_the_venv_runs_and_build_trees(workspace):
     ignored = set((workspace.root / ".dockerignore").read_text().split())
     assert {".venv", "runs", "ros_ws/build", "ros_ws/install", "ros_ws/log", "interfaces/build"} <= ignored
+
+
+
+def _dockerignored(relative, patterns):
+    """Whether ``.dockerignore`` leaves ``relative`` (or a folder above it) out of the context."""
+    prefixes = [PurePosixPath(*relative.parts[:i]) for i in range(1, len(relative.parts) + 1)]
+    return any(fnmatch(prefix.as_posix(), pattern) or (pattern.startswith("**/") and fnmatch(prefix.name, pattern[3:]))
+               for prefix in prefixes for pattern in patterns)
+
+
+def _build_context_links(root, patterns):
+    """Every symbolic link Docker's ``COPY . .`` copies (as a link: COPY does not follow them)."""
+    for folder, subfolders, files in os.walk(root):
+        relative = Path(folder).relative_to(root)
+        subfolders[:] = [s for s in subfolders if not _dockerignored(relative / s, patterns)]
+        for name in subfolders + files:
+            if (Path(folder) / name).is_symlink() and not _dockerignored(relative / name, patterns):
+                yield Path(folder) / name
+
+
+def test_every_link_in_the_build_context_resolves_inside_it(workspace):
+    """params/ links to the files the packages own, ros_ws/src to the packages: in the image they
+    resolve only if relative and pointing at something COPY brings along (not dockerignored)."""
+    patterns = [line.strip() for line in (workspace.root / ".dockerignore").read_text().splitlines()
+                if line.strip() and not line.startswith("#")]
+    root = workspace.root.resolve()
+    links = list(_build_context_links(root, patterns))
+    assert {"params", "ros_ws"} <= {link.relative_to(root).parts[0] for link in links}
+    for link in links:
+        assert not Path(os.readlink(link)).is_absolute(), link
+        target = link.resolve()
+        assert target.exists() and target.is_relative_to(root), link
+        assert not _dockerignored(target.relative_to(root), patterns), link

@@ -154,3 +154,33 @@ def test_the_installed_door_bringup_has_its_node_parameter_files(workspace):
     assert {p.name for p in share.glob("*.yaml")} == {p.name for p in sources.glob("*.yaml")} \
         >= {f"{launch.node_name}.yaml" for launch in GRAPH}
 
+
+def test_params_links_each_file_to_the_package_that_owns_it(workspace):
+    """params/ is where the README sends users (``--params-file params/<node>.yaml``,
+    ``params/robot_<name>.yaml``); the files are the packages' own (issue #17), linked relatively
+    so that any clone, tarball or Docker build context resolves them."""
+    entries = sorted((workspace.root / "params").iterdir())
+    assert entries
+    for entry in entries:
+        assert entry.is_symlink() and not Path(os.readlink(entry)).is_absolute(), \
+            f"{entry}: move the file into the package that reads it and link it from params/"
+        target = entry.resolve()
+        package = next((folder for folder in target.parents if (folder / "package.xml").is_file()), None)
+        assert target.is_file() and package is not None and package.parent == (workspace.root / "src").resolve(), entry
+
+
+LEAVES_THE_FOLDER = re.compile(r"(^|/)\.\.(/|$)")
+
+
+def test_every_setup_py_names_only_files_in_its_own_folder(workspace):
+    """A setup.py that globs ``../../params`` builds only inside this checkout (not from a
+    tarball, nor in a build of one package): no path in it leaves the package folder."""
+    import ast
+
+    for package in sorted((workspace.root / "ros_ws" / "src").iterdir()):
+        tree = ast.parse((package / "setup.py").read_text())
+        in_f_strings = {id(part) for n in ast.walk(tree) if isinstance(n, ast.JoinedStr) for part in n.values}
+        strings = [n.value for n in ast.walk(tree)  # f-strings name install destinations (f"share/{PACKAGE}/params")
+                   if isinstance(n, ast.Constant) and isinstance(n.value, str) and id(n) not in in_f_strings]
+        outside = [s for s in strings if LEAVES_THE_FOLDER.search(s) or s.startswith("/")]
+        assert not outside, f"{package.name}/setup.py names {outside}"
