@@ -5,7 +5,7 @@ import sys
 
 import pytest
 
-from door_bringup.domains import DOMAIN_COUNT, DomainsExhausted, lease_domain
+from door_bringup.domains import DOMAIN_COUNT, DomainsExhausted, lease_domain, lease_wanted_domain
 
 
 def test_a_held_id_is_skipped_and_a_released_one_is_taken_again(tmp_path) -> None:
@@ -54,3 +54,22 @@ def test_a_lease_can_be_bounded_to_a_range_of_ids(tmp_path) -> None:
         lease_domain(10, tmp_path, count=2)
     for lease in held:
         lease.release()
+
+
+def test_a_main_job_takes_the_domain_it_asks_for_or_the_next_free_one(tmp_path) -> None:
+    """Two main jobs side by side shared domain 0 and answered each other's approvals: the
+    second now takes the next free id, and says which it asked for."""
+    first, wanted = lease_wanted_domain({}, tmp_path)
+    assert (first.domain, wanted) == (0, 0)
+    second, wanted = lease_wanted_domain({"ROS_DOMAIN_ID": "0"}, tmp_path)
+    assert (second.domain, wanted) == (1, 0)
+    chosen, wanted = lease_wanted_domain({"ROS_DOMAIN_ID": " 42 "}, tmp_path)
+    assert (chosen.domain, wanted) == (42, 42)
+    for lease in (first, second, chosen):
+        lease.release()
+
+
+@pytest.mark.parametrize("text", ["-1", "233", "one", "4.5"])
+def test_a_domain_id_that_is_not_one_is_refused_naming_it(text, tmp_path) -> None:
+    with pytest.raises(ValueError, match=f"ROS_DOMAIN_ID = '{text}' is not a ROS domain id"):
+        lease_wanted_domain({"ROS_DOMAIN_ID": text}, tmp_path)

@@ -14,10 +14,12 @@ from __future__ import annotations
 import fcntl
 import os
 import tempfile
+from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["DOMAIN_COUNT", "DomainLease", "DomainsExhausted", "default_lock_directory", "lease_domain"]
+__all__ = ["DOMAIN_COUNT", "DomainLease", "DomainsExhausted", "default_lock_directory", "lease_domain",
+           "lease_wanted_domain"]
 
 DOMAIN_COUNT = 233
 """The domain ids DDS allows on one host (0-232)."""
@@ -61,3 +63,15 @@ def lease_domain(first: int, directory: Path | None = None, count: int = DOMAIN_
         return DomainLease(domain, fd)
     last = (first + min(count, DOMAIN_COUNT) - 1) % DOMAIN_COUNT
     raise DomainsExhausted(f"every ROS domain id in {first}..{last} is leased (lock files in {folder})")
+
+
+def lease_wanted_domain(environ: Mapping[str, str], directory: Path | None = None) -> tuple[DomainLease, int]:
+    """The lease of a main job: the domain ``environ`` asks for (``ROS_DOMAIN_ID``, default 0)
+    if no other run holds it, else the next free one; with the id that was asked for. Two main
+    jobs started side by side shared domain 0 and answered each other's approvals.
+    ValueError when ``ROS_DOMAIN_ID`` is not an id of 0-232."""
+    text = environ.get("ROS_DOMAIN_ID", "").strip() or "0"
+    if not text.isdigit() or int(text) >= DOMAIN_COUNT:
+        raise ValueError(f"ROS_DOMAIN_ID = {text!r} is not a ROS domain id (an integer in [0, {DOMAIN_COUNT - 1}])")
+    wanted = int(text)
+    return lease_domain(wanted, directory), wanted

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import time
 from dataclasses import asdict, dataclass
@@ -34,6 +35,7 @@ from rclpy.node import Node
 from std_msgs.msg import String
 
 from door_bringup.bags.recorder import message_digest, recorded_key
+from door_bringup.domains import DomainsExhausted, lease_wanted_domain
 from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH, NodeLaunch
 from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm
 from door_bringup.params_files import ROBOT_PARAMETER, robot_nodes
@@ -282,12 +284,20 @@ def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
 def main(argv: list[str] | None = None) -> int:
     options, run_dir = parse_options(argv)
     interrupt_on_sigterm()
+    try:
+        lease, wanted = lease_wanted_domain(os.environ)  # held until this process exits
+    except (ValueError, DomainsExhausted) as error:
+        print(f"door_task: {error}", file=sys.stderr)
+        return 2
+    os.environ["ROS_DOMAIN_ID"] = str(lease.domain)
     workspace = Workspace(repository_root())
     stamp = datetime.now(UTC).strftime("%Y%m%dT%H%M%SZ")
     run_dir = run_dir or workspace.root / "runs" / f"{stamp}_{options.robot}_{options.opening}_{options.hinge}"
     run_dir.mkdir(parents=True, exist_ok=True)
+    busy = "" if lease.domain == wanted else f" ({wanted} is another run's)"
     print(f"door task: {options.robot}, {options.opening} door hinged {options.hinge}, autonomy "
-          f"{options.autonomy}, operator {options.operator}; run folder {run_dir}", flush=True)
+          f"{options.autonomy}, operator {options.operator}; ROS domain {lease.domain}{busy}; run folder {run_dir}",
+          flush=True)
     try:
         report = run_task(options, run_dir, workspace)
     except KeyboardInterrupt as signal_name:  # run_task has stopped the graph on its way out
