@@ -1,10 +1,12 @@
-"""The words every package of the door task shares: door opening, sides, walk goals.
+"""The words every package of the door task shares: door opening, sides, walk goals, the task's states.
 
 ROS-free (standard library only), so the cores (footstep planner, trajectory optimiser,
-detector, sim) import it without rclpy. Every enum is a :class:`~enum.StrEnum` whose values
-are the spellings used in parameters, YAML and JSON payloads (``"push"``, ``"left"``,
-``"stand"``): a member compares equal to its spelling, formats as it (``f"/{side}_hand"`` is
-``/left_hand``) and :mod:`door_contract.payloads` decodes it.
+detector, sim) import it without rclpy. Every enum but :class:`TaskState` is a
+:class:`~enum.StrEnum` whose values are the spellings used in parameters, YAML and JSON
+payloads (``"push"``, ``"left"``, ``"stand"``): a member compares equal to its spelling,
+formats as it (``f"/{side}_hand"`` is ``/left_hand``) and :mod:`door_contract.payloads`
+decodes it. A task state is spelled by its :attr:`~TaskState.label`, which is not its value
+(``OPEN_DOOR/TURN_HANDLE``), so it is a plain Enum: it equals no string at all.
 
 Sides are **as seen by the robot facing forward** (REP-103: x forward, y left). For a door
 that is the approach side facing the door, which is also left/right in the head camera's
@@ -13,10 +15,13 @@ image.
 
 from __future__ import annotations
 
-from enum import StrEnum
+from enum import Enum, StrEnum
 
-__all__ = ["AttemptOutcome", "Autonomy", "Backend", "DetectionMode", "DoorOpening", "Foot", "HingeSide", "Motion",
-           "PlannerKind", "Side", "TaskEnd", "WalkGoal", "grasp_hand"]
+from door_contract.errors import ContractError
+
+__all__ = ["OPEN_DOOR_SUBSTATES", "WALK_THROUGH_SUBSTATES", "AttemptOutcome", "Autonomy", "Backend", "DetectionMode",
+           "DoorOpening", "Foot", "HingeSide", "Motion", "PlannerKind", "Side", "TaskEnd", "TaskState", "WalkGoal",
+           "grasp_hand"]
 
 
 class DoorOpening(StrEnum):
@@ -130,6 +135,76 @@ class TaskEnd(StrEnum):
 
     DONE = "DONE"
     FAILED = "FAILED"
+
+
+class TaskState(Enum):
+    """The door task's states ([Banerjee 2015], Fig. 3): what the FSM is in, what
+    ``/door_task/state`` publishes (the :attr:`label`) and what ``StateAttempt.state`` names.
+
+    DETECT_DOOR → WALK_TO_DOOR → OPEN_DOOR [MOVE_TO_HANDLE → GRASP → TURN_HANDLE → PUSH or PULL
+    → BLOCK (pull doors) → READY_TO_WALK] → WALK_THROUGH → DONE, plus PAUSED, MANUAL and FAILED.
+    A pull door's WALK_THROUGH walks in two parts around an arm motion: [TO_DOORWAY → TUCK] →
+    WALK_THROUGH (:mod:`footstep_planner.pull_passage` says why).
+
+    Not a StrEnum: its spelling on the bus and in reports is the label, not the value, and a
+    state that compared equal to ``"TURN_HANDLE"`` but not to ``"OPEN_DOOR/TURN_HANDLE"`` would
+    make a comparison with a label silently false (mypy flags any comparison with a string).
+    """
+
+    DETECT_DOOR = "DETECT_DOOR"
+    WALK_TO_DOOR = "WALK_TO_DOOR"
+    MOVE_TO_HANDLE = "MOVE_TO_HANDLE"
+    GRASP = "GRASP"
+    TURN_HANDLE = "TURN_HANDLE"
+    PUSH = "PUSH"
+    PULL = "PULL"
+    BLOCK = "BLOCK"
+    READY_TO_WALK = "READY_TO_WALK"
+    TO_DOORWAY = "TO_DOORWAY"
+    TUCK = "TUCK"
+    WALK_THROUGH = "WALK_THROUGH"
+    DONE = "DONE"
+    PAUSED = "PAUSED"
+    MANUAL = "MANUAL"
+    FAILED = "FAILED"
+
+    @property
+    def is_terminal(self) -> bool:
+        return self in (TaskState.DONE, TaskState.FAILED)
+
+    @property
+    def is_open_door_substate(self) -> bool:
+        return self in OPEN_DOOR_SUBSTATES
+
+    @property
+    def is_walk_through_substate(self) -> bool:
+        return self in WALK_THROUGH_SUBSTATES
+
+    @property
+    def label(self) -> str:
+        """``OPEN_DOOR/TURN_HANDLE`` and ``WALK_THROUGH/TUCK`` for sub-states (the phase first, as
+        Table I groups them), the plain name otherwise: the state's spelling on ``/door_task/state``
+        and in JSON payloads."""
+        if self.is_open_door_substate:
+            return f"OPEN_DOOR/{self.value}"
+        return f"WALK_THROUGH/{self.value}" if self.is_walk_through_substate else self.value
+
+    @classmethod
+    def of_label(cls, text: str) -> TaskState:
+        """The state whose :attr:`label` is ``text`` (a ``/door_task/state`` message, a report's
+        ``state``); :class:`~door_contract.errors.ContractError` for any other text (a bare
+        sub-state name such as ``TURN_HANDLE`` is not a label)."""
+        state = _STATES_BY_LABEL.get(text)
+        if state is None:
+            raise ContractError(f"unknown task state {text!r}; use one of {', '.join(_STATES_BY_LABEL)}")
+        return state
+
+
+OPEN_DOOR_SUBSTATES = frozenset({TaskState.MOVE_TO_HANDLE, TaskState.GRASP, TaskState.TURN_HANDLE,
+                                 TaskState.PUSH, TaskState.PULL, TaskState.BLOCK,
+                                 TaskState.READY_TO_WALK})
+WALK_THROUGH_SUBSTATES = frozenset({TaskState.TO_DOORWAY, TaskState.TUCK})
+_STATES_BY_LABEL = {state.label: state for state in TaskState}
 
 
 class PlannerKind(StrEnum):

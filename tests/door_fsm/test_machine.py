@@ -2,13 +2,13 @@
 
 import pytest
 
-from door_contract.vocabulary import AttemptOutcome, Autonomy, DoorOpening, WalkGoal
+from door_contract.vocabulary import AttemptOutcome, Autonomy, DoorOpening, TaskState, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.machine import DoorTaskMachine, MachineOptions
 from door_fsm.operator_commands import OperatorCommand, OperatorWord, UnknownCommandError, parse_command
 from door_fsm.records import Instant
-from door_fsm.states import Phase, StateOutcome, TaskState
+from door_fsm.states import Phase, StateOutcome
 from door_fsm.wiring import WiringError, build_wiring, success_sequence, validate_wiring
 from door_fsm.work import WorkKind
 

@@ -4,13 +4,13 @@ repeats change something, deadlines scale with the work on the right clock, fall
 import pytest
 from test_machine import Robot, _advance_to, _until_approval, say, t
 
-from door_contract.vocabulary import Autonomy
+from door_contract.vocabulary import Autonomy, TaskState
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.machine import DoorTaskMachine, MachineOptions, MachineOptionsError
 from door_fsm.operator_commands import OperatorCommand
 from door_fsm.records import Instant
-from door_fsm.states import Phase, StateOutcome, TaskState
+from door_fsm.states import Phase, StateOutcome
 
 
 def _executing(state=TaskState.WALK_TO_DOOR, work_s=20.0):

@@ -45,8 +45,7 @@ from door_bringup.robot_option import add_robot_argument, check_robot
 from door_contract.errors import ParameterRangeError
 from door_contract.parameters import validate_all
 from door_contract.payloads import DoorEstimate, FootstepRequest, OutcomeStatus
-from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeSide, Motion, Side, WalkGoal
-from door_fsm.states import TaskState
+from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeSide, Motion, Side, TaskState, WalkGoal
 from door_fsm.wiring import WiringError, success_sequence
 from door_fsm.work import STATE_WORK, WorkKind
 from door_robot.kinematics import RobotKinematics

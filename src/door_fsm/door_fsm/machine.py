@@ -21,14 +21,14 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from door_contract.payloads import StateAttempt
-from door_contract.vocabulary import Autonomy, DoorOpening, Motion, WalkGoal
+from door_contract.vocabulary import Autonomy, DoorOpening, Motion, TaskState, WalkGoal
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.approvals import approval_text, refusal
 from door_fsm.errors import DoorFsmError
 from door_fsm.operator_commands import OperatorCommand, OperatorWord
 from door_fsm.records import PHASE_CLOCK, Instant, StateRecord
-from door_fsm.states import Phase, StateOutcome, TaskState
+from door_fsm.states import Phase, StateOutcome
 from door_fsm.wiring import build_wiring
 from door_fsm.work import STATE_WORK, StateWork, WorkKind
 

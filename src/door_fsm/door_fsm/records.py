@@ -13,8 +13,8 @@ from dataclasses import dataclass, field
 from enum import Enum
 
 from door_contract.payloads import ProposalSummary, StateAttempt
-from door_contract.vocabulary import AttemptOutcome
-from door_fsm.states import Phase, StateOutcome, TaskState
+from door_contract.vocabulary import AttemptOutcome, TaskState
+from door_fsm.states import Phase, StateOutcome
 
 
 class Clock(str, Enum):

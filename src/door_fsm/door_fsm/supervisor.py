@@ -33,7 +33,7 @@ from door_contract.payloads import (
 )
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Services, ServiceSpec
-from door_contract.vocabulary import Autonomy, Backend, DoorOpening, PlannerKind, Side, TaskEnd
+from door_contract.vocabulary import Autonomy, Backend, DoorOpening, PlannerKind, Side, TaskEnd, TaskState
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.answers import execution_event, planning_event, usable_door_estimate
@@ -43,7 +43,7 @@ from door_fsm.graph_watch import GraphStep, GraphWatch
 from door_fsm.machine import DoorTaskMachine, MachineOptions
 from door_fsm.operator_commands import UnknownCommandError, parse_command
 from door_fsm.records import Instant
-from door_fsm.states import Phase, TaskState
+from door_fsm.states import Phase
 from door_fsm.summaries import door_summary, task_report, work_of
 from door_robot.profile import RobotProfile
 

@@ -9,9 +9,9 @@ from __future__ import annotations
 
 from collections import deque
 
-from door_contract.vocabulary import DoorOpening
+from door_contract.vocabulary import DoorOpening, TaskState
 from door_fsm.errors import DoorFsmError
-from door_fsm.states import StateOutcome, TaskState
+from door_fsm.states import StateOutcome
 from door_fsm.work import STATE_WORK
 
 Wiring = dict[tuple[TaskState, StateOutcome], TaskState]

@@ -9,9 +9,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from enum import Enum
 
-from door_contract.vocabulary import Motion, PlannerKind, WalkGoal
+from door_contract.vocabulary import Motion, PlannerKind, TaskState, WalkGoal
 from door_fsm.errors import DoorFsmError
-from door_fsm.states import StateOutcome, TaskState
+from door_fsm.states import StateOutcome
 
 
 class WorkKind(str, Enum):
