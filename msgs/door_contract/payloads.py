@@ -3,11 +3,14 @@
 Every payload is a frozen dataclass; :func:`encode` / :func:`decode` convert it, and
 decoding rejects missing fields, unknown fields and wrong types with a
 :class:`~door_contract.errors.ContractError` — a malformed message never reaches a core.
+An enum member is spelled by its value, a :class:`~door_contract.vocabulary.TaskState` by its
+label (as ``/door_task/state`` publishes it), in both directions.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import json
 import math
 import types
@@ -27,6 +30,7 @@ from door_contract.vocabulary import (
     Motion,
     Side,
     TaskEnd,
+    TaskState,
     WalkGoal,
 )
 
@@ -183,12 +187,13 @@ attempt's record of it."""
 class StateAttempt:
     """One attempt at one state of the task, as the TaskReport lists it (times in s).
 
-    ``state`` is the state's label (``OPEN_DOOR/TURN_HANDLE`` for a sub-state: its phase
-    first), ``attempt`` 1 for the first try. Planning and waiting for the operator are
+    ``state`` is spelled by its label in JSON (``OPEN_DOOR/TURN_HANDLE`` for a sub-state: its
+    phase first), as ``/door_task/state`` publishes it and old ``report.json`` / ``trial.json``
+    files hold it; ``attempt`` is 1 for the first try. Planning and waiting for the operator are
     measured on the wall clock, moving on the robot clock (``TaskReport.clocks``).
     """
 
-    state: str
+    state: TaskState
     attempt: int
     outcome: AttemptOutcome
     planning_s: float = 0.0
@@ -211,8 +216,17 @@ class TaskReport:
 
 
 def encode(payload: Any) -> str:
-    """JSON text of a payload dataclass (nested dataclasses as objects, Enums by value)."""
-    return json.dumps(dataclasses.asdict(payload), default=_enum_value, allow_nan=False)
+    """JSON text of a payload dataclass (nested dataclasses as objects, enum members by their
+    spelling: :func:`_spelling`)."""
+    return json.dumps(dataclasses.asdict(payload), default=_json_spelling, allow_nan=False)
+
+
+def encode_document(payload: Any) -> dict[str, Any]:
+    """The JSON object of a payload dataclass as plain data (what :func:`encode` writes and
+    :func:`decode_document` reads back), for a file that embeds payloads: ``report.json``'s
+    and ``trial.json``'s attempts."""
+    document: dict[str, Any] = json.loads(encode(payload))
+    return document
 
 
 def finite_or_none(value: float) -> float | None:
@@ -224,9 +238,17 @@ def finite_or_none(value: float) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def _enum_value(value: Any) -> Any:
+def _spelling(member: Enum) -> Any:
+    """How a payload spells an enum member: a task state by its label (``OPEN_DOOR/TURN_HANDLE``,
+    as ``/door_task/state`` publishes it), any other member by its value."""
+    return member.label if isinstance(member, TaskState) else member.value
+
+
+def _json_spelling(value: Any) -> Any:
+    """``json.dumps``'s fallback: an enum member that is no str (a str enum is written as its
+    value by json itself; a TaskState is not one, so it reaches here)."""
     if isinstance(value, Enum):
-        return value.value
+        return _spelling(value)
     raise TypeError(f"cannot encode {type(value).__name__}")
 
 
@@ -282,14 +304,21 @@ def _tuple_value(owner: str, name: str, hint: Any, value: Any) -> tuple[Any, ...
     return tuple(_field_value(owner, name, item_type, item) for item in value)
 
 
+@functools.cache
+def _members_by_spelling(hint: type[Enum]) -> dict[Any, Enum]:
+    """Every member of ``hint`` by its :func:`_spelling` (the inverse of encoding it)."""
+    return {_spelling(member): member for member in hint}
+
+
 def _enum_member(owner: str, name: str, hint: type[Enum], value: Any) -> Enum:
-    """The member of ``hint`` spelled ``value``, or ContractError listing the allowed ones."""
-    if issubclass(hint, str) and not isinstance(value, str):
+    """The member of ``hint`` spelled ``value``, or ContractError listing the allowed spellings."""
+    members = _members_by_spelling(hint)
+    if all(isinstance(spelled, str) for spelled in members) and not isinstance(value, str):
         raise ContractError(f"{owner}.{name}: expected a string, got {value!r}")
     try:
-        return hint(value)
-    except ValueError:
-        allowed = ", ".join(str(m.value) for m in hint)
+        return members[value]
+    except (KeyError, TypeError):  # TypeError: an unhashable value (a list, an object)
+        allowed = ", ".join(str(spelled) for spelled in members)
         raise ContractError(f"{owner}.{name}: unknown {name} {value!r}; use one of {allowed}") from None
 
 

@@ -19,7 +19,7 @@ from door_contract.converters.joint_state import positions_to_joint_state
 from door_contract.payloads import DoorEstimate, encode
 from door_contract.stamps import to_time_msg
 from door_contract.topics import Topics
-from door_contract.vocabulary import Foot, HingeSide, Side
+from door_contract.vocabulary import Foot, HingeSide, Side, TaskState
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_sim_bridge.world.door import HINGE_JOINT
@@ -85,10 +85,10 @@ def test_run_series_from_a_bag(tmp_path):
 
 
 def test_progress_line_and_printer():
-    progress = TaskProgress(wall_s=41.2, sim_s=27.5, state="OPEN_DOOR/TURN_HANDLE", base_xy=(-0.62, -0.15), door_angle=0.12)
+    progress = TaskProgress(wall_s=41.2, sim_s=27.5, state=TaskState.TURN_HANDLE, base_xy=(-0.62, -0.15), door_angle=0.12)
     assert progress_line(progress) == ("[progress]   41 s | sim 27.5 s | 3/4 OPEN_DOOR/TURN_HANDLE | "
                                        "base (-0.62, -0.15) m | door 0.12 rad")
-    assert phase_of("PAUSED") == "PAUSED" and progress_line(TaskProgress()).endswith("waiting for the FSM")
+    assert phase_of(TaskState.PAUSED) == "PAUSED" and progress_line(TaskProgress()).endswith("waiting for the FSM")
     assert progress_line(progress.update(door_angle=-0.001)).endswith("door 0.00 rad")
     written = []
     log = ProgressPrinter(written.append, is_terminal=False, log_period_s=10.0)

@@ -1,6 +1,7 @@
 """The topic table is complete, unique and resolvable; JSON payloads reject bad input."""
 
 import json
+import re
 
 import pytest
 
@@ -15,11 +16,13 @@ from door_contract.payloads import (
     StateAttempt,
     TaskReport,
     decode,
+    decode_document,
     encode,
+    encode_document,
 )
 from door_contract.qos import Durability
 from door_contract.topics import Services, Topics
-from door_contract.vocabulary import AttemptOutcome, Autonomy, Backend, DoorOpening, TaskEnd
+from door_contract.vocabulary import AttemptOutcome, Autonomy, Backend, DoorOpening, TaskEnd, TaskState
 
 DESIGN_TOPICS = {
     "/clock", "/joint_states", "/odom", "/head_camera/color/image_raw",
@@ -63,15 +66,39 @@ def test_payload_round_trip():
 
 
 def test_a_task_report_lists_typed_state_attempts_and_its_json_stays_an_object_per_attempt():
-    attempts = (StateAttempt("DETECT_DOOR", 1, AttemptOutcome.SUCCEEDED, 0.4, 2.0, 0.0, "",
+    attempts = (StateAttempt(TaskState.DETECT_DOOR, 1, AttemptOutcome.SUCCEEDED, 0.4, 2.0, 0.0, "",
                              {"width_m": 0.914, "hinge": "left"}),
-                StateAttempt("OPEN_DOOR/TURN_HANDLE", 2, AttemptOutcome.UNFINISHED, 0.1))
+                StateAttempt(TaskState.TURN_HANDLE, 2, AttemptOutcome.UNFINISHED, 0.1))
     report = TaskReport(TaskEnd.FAILED, "aborted", DoorOpening.PUSH, Autonomy.FULL, attempts, "wall")
     text = encode(report)
     assert decode(TaskReport, text) == report
-    first = json.loads(text)["attempts"][0]
+    first, second = json.loads(text)["attempts"]
     assert first == {"state": "DETECT_DOOR", "attempt": 1, "outcome": "succeeded", "planning_s": 0.4,
                      "waiting_s": 2.0, "moving_s": 0.0, "reason": "", "summary": {"width_m": 0.914, "hinge": "left"}}
+    assert second["state"] == "OPEN_DOOR/TURN_HANDLE"  # the label, as /door_task/state publishes it
+    assert encode_document(attempts[1]) == second
+
+
+def test_an_attempt_of_an_old_report_file_reads_back_typed():
+    """Campaigns resume from the trial.json / report.json files they wrote: an object per
+    attempt, its state a label."""
+    old = {"state": "WALK_THROUGH/TUCK", "attempt": 1, "outcome": "fell", "planning_s": 0.3, "waiting_s": 0.0,
+           "moving_s": 2.5, "reason": "the robot fell: tilt", "summary": {"cost": 1.5, "backend": "sqp"}}
+    attempt = decode_document(StateAttempt, old)
+    assert attempt.state is TaskState.TUCK and attempt.outcome is AttemptOutcome.FELL
+    assert attempt.summary == {"cost": 1.5, "backend": "sqp"}
+    assert encode_document(attempt) == old
+
+
+@pytest.mark.parametrize("state, match", [
+    ("TURN_HANDLE", "unknown state 'TURN_HANDLE'; use one of DETECT_DOOR, WALK_TO_DOOR, OPEN_DOOR/MOVE_TO_HANDLE"),
+    ("dance", "StateAttempt.state: unknown state 'dance'"),
+    (3, "StateAttempt.state: expected a string"),
+    (["DETECT_DOOR"], "StateAttempt.state: expected a string"),
+])
+def test_an_attempt_names_its_state_by_its_label_only(state, match):
+    with pytest.raises(ContractError, match=re.escape(match)):
+        decode_document(StateAttempt, {"state": state, "attempt": 1, "outcome": "failed"})
 
 
 @pytest.mark.parametrize("document, match", [

@@ -12,7 +12,7 @@ from door_bringup.graph_spec import GRAPH
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import DoorEstimate, TaskReport, decode, encode
 from door_contract.topics import Topics
-from door_contract.vocabulary import AttemptOutcome, HingeSide
+from door_contract.vocabulary import AttemptOutcome, HingeSide, TaskState
 
 pytestmark = pytest.mark.ros
 ESTIMATE = DoorEstimate(0.0, "odom", (1.2, -0.35, 0.95), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
@@ -79,7 +79,7 @@ def test_approval_request_then_operator_silence_times_out(supervisor):
     assert supervisor.wait(lambda: supervisor.reports, 10.0)
     report = supervisor.reports[-1]
     assert report.final_state == "FAILED" and "operator did not answer" in report.failure_reason
-    assert report.attempts[0].state == "DETECT_DOOR" and report.attempts[0].outcome is AttemptOutcome.TIMEOUT
+    assert report.attempts[0].state is TaskState.DETECT_DOOR and report.attempts[0].outcome is AttemptOutcome.TIMEOUT
 
 
 def test_reject_pause_resume_abort_and_unknown_command(supervisor):

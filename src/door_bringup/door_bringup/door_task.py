@@ -24,7 +24,7 @@ import json
 import os
 import sys
 import time
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 from datetime import UTC, datetime
 from pathlib import Path
 
@@ -48,7 +48,7 @@ from door_bringup.workspace import Workspace, repository_root
 from door_contract.converters.diagnostics import status_values
 from door_contract.network import keep_discovery_local
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import TaskReport, decode
+from door_contract.payloads import TaskReport, decode, encode_document
 from door_contract.topics import Topics
 from door_contract.vocabulary import TaskEnd
 from door_fsm.operator_commands import request_id_of
@@ -228,7 +228,7 @@ def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, 
     report = operator.report
     return {"final_state": report.final_state, "failure_reason": report.failure_reason,
             "opening": report.opening, "autonomy": report.autonomy,
-            "attempts": [asdict(attempt) for attempt in report.attempts],  # report.json: an object per attempt
+            "attempts": [encode_document(attempt) for attempt in report.attempts],  # report.json: an object per attempt
             "clocks": report.clocks}
 
 
@@ -242,7 +242,7 @@ def write_report(run_dir: Path, options: TaskOptions, report: dict) -> str:
              "", table, "", f"Times: {report.get('clocks') or 'see docs/CLOCKS.md'}.", "", "## State attempts", "", "| state | attempt | outcome | planning | moving | reason |",
              "|---|---|---|---|---|---|"]
     for a in state_attempts(report):
-        lines.append(f"| {a.state} | {a.attempt} | {a.outcome} | {a.planning_s:.3f} s | {a.moving_s:.1f} s | {a.reason} |")
+        lines.append(f"| {a.state.label} | {a.attempt} | {a.outcome} | {a.planning_s:.3f} s | {a.moving_s:.1f} s | {a.reason} |")
     text = "\n".join(lines) + "\n"
     (run_dir / "report.md").write_text(text)
     (run_dir / "report.json").write_text(json.dumps({"options": options.__dict__, **report}, indent=2, default=str))

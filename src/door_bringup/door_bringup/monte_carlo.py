@@ -40,7 +40,7 @@ from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.table_one import format_table, phase_of, phase_rows, state_attempts
 from door_bringup.trial_ranges import NARROW, RangeSet, TrialRanges, ranges_named
 from door_bringup.workspace import Workspace, repository_root
-from door_contract.vocabulary import AttemptOutcome, TaskEnd
+from door_contract.vocabulary import AttemptOutcome, TaskEnd, TaskState
 
 
 def sample_trial(rng: np.random.Generator, base: TaskOptions, trial: int,
@@ -234,8 +234,8 @@ def falls_line(reports: list[dict]) -> str:
     """Runs that ended with the robot fallen, per phase and, where a phase has sub-states, per
     sub-state: the state attempt whose outcome is ``fell`` (the FSM records it so when the
     execution reports the fall)."""
-    states = Counter(attempt.state for r in reports for attempt in state_attempts(r)
-                     if attempt.outcome is AttemptOutcome.FELL)
+    states = Counter[TaskState](attempt.state for r in reports for attempt in state_attempts(r)
+                                if attempt.outcome is AttemptOutcome.FELL)
     phases = Counter[str]()
     for state, count in states.items():
         phases[phase_of(state)] += count
@@ -243,10 +243,9 @@ def falls_line(reports: list[dict]) -> str:
     return f"Falls: {sum(phases.values())}/{len(reports)} runs ({counted or 'none'})"
 
 
-def _sub_states(phase: str, states: Counter[str]) -> str:
+def _sub_states(phase: str, states: Counter[TaskState]) -> str:
     """`` (TO_DOORWAY 10, WALK_THROUGH 2)``: a phase's falls by the sub-state they were in, if it has any."""
-    within = {state.split("/", 1)[1] if "/" in state else state: n for state, n in sorted(states.items())
-              if phase_of(state) == phase}
+    within = {state.value: n for state, n in states.items() if phase_of(state) == phase}
     if len(within) == 1 and phase in within:
         return ""
     return " (" + ", ".join(f"{state} {n}" for state, n in sorted(within.items())) + ")"
@@ -259,7 +258,7 @@ def overhead_line(reports: list[dict]) -> str:
     if not runs:
         return "Perception + planning overhead: no run reached a state"
     per_run = sorted(sum(a.planning_s for a in attempts) for attempts in runs)
-    detection = [sum(a.planning_s for a in attempts if a.state == "DETECT_DOOR") for attempts in runs]
+    detection = [sum(a.planning_s for a in attempts if a.state is TaskState.DETECT_DOOR) for attempts in runs]
     median = statistics.median(per_run)
     return (f"Perception + planning overhead per run: median {median:.2f} s (min {per_run[0]:.2f} s, "
             f"max {per_run[-1]:.2f} s; detection median {statistics.median(detection):.2f} s); "

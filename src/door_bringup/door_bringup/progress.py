@@ -14,6 +14,7 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 from door_bringup.table_one import PHASES, phase_of
+from door_contract.vocabulary import TaskState
 
 
 @dataclass(frozen=True)
@@ -22,7 +23,7 @@ class TaskProgress:
 
     wall_s: float = 0.0
     sim_s: float | None = None
-    state: str | None = None
+    state: TaskState | None = None
     base_xy: tuple[float, float] | None = None
     door_angle: float | None = None  # rad, the angle the FSM's last planning request plans with
 
@@ -30,10 +31,10 @@ class TaskProgress:
         return replace(self, **changes)
 
 
-def numbered_state(state: str) -> str:
-    """``n/4 STATE`` for the four phases (``OPEN_DOOR/TURN_HANDLE`` is phase 3), else the state."""
+def numbered_state(state: TaskState) -> str:
+    """``n/4 LABEL`` for the four phases (``OPEN_DOOR/TURN_HANDLE`` is phase 3), else the label."""
     top = phase_of(state)
-    return f"{PHASES.index(top) + 1}/{len(PHASES)} {state}" if top in PHASES else state
+    return f"{PHASES.index(top) + 1}/{len(PHASES)} {state.label}" if top in PHASES else state.label
 
 
 def _rounded(value: float) -> float:

@@ -19,9 +19,11 @@ from rclpy.node import Node
 from std_msgs.msg import String
 
 from door_bringup.progress import ProgressPrinter, TaskProgress
+from door_contract.errors import ContractError
 from door_contract.node_support import create_contract_subscription
 from door_contract.stamps import from_time_msg
 from door_contract.topics import Topics
+from door_contract.vocabulary import TaskState
 
 
 class ProgressMonitor:
@@ -29,12 +31,18 @@ class ProgressMonitor:
         self.progress = TaskProgress()
         self.printer = ProgressPrinter(lambda text: (sys.stdout.write(text), sys.stdout.flush()), sys.stdout.isatty())
         self._started, self._period, self._next = time.monotonic(), period_s, 0.0
-        create_contract_subscription(node, Topics.TASK_STATE, lambda m: self._set(state=m.data))
+        create_contract_subscription(node, Topics.TASK_STATE, self._on_state)
         for topic in (Topics.FOOTSTEP_REQUEST, Topics.MOTION_REQUEST):
             create_contract_subscription(node, topic, self._on_request)
 
     def _set(self, **changes: Any) -> None:
         self.progress = self.progress.update(**changes)
+
+    def _on_state(self, msg: String) -> None:
+        try:
+            self._set(state=TaskState.of_label(msg.data))
+        except ContractError:
+            return  # no state's label: the line keeps the last one (it shows, it does not judge)
 
     def _on_request(self, msg: String) -> None:
         try:

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from door_contract.payloads import StateAttempt, decode_document
-from door_contract.vocabulary import AttemptOutcome
+from door_contract.vocabulary import AttemptOutcome, TaskState
 
 PHASES = ("DETECT_DOOR", "WALK_TO_DOOR", "OPEN_DOOR", "WALK_THROUGH")
 
@@ -27,10 +27,11 @@ class PhaseRow:
         return self.successes / self.runs if self.runs else 0.0
 
 
-def phase_of(state_label: str) -> str:
-    """The phase of a state's label: ``OPEN_DOOR/TURN_HANDLE`` is OPEN_DOOR, ``WALK_THROUGH/TUCK``
-    WALK_THROUGH (a sub-state's label names its phase first)."""
-    return state_label.split("/", 1)[0]
+def phase_of(state: TaskState) -> str:
+    """The Table I phase of a state: TURN_HANDLE's is OPEN_DOOR, TUCK's WALK_THROUGH (a
+    sub-state's label, ``OPEN_DOOR/TURN_HANDLE``, names its phase first), any other state's its
+    own name (PAUSED is no phase of the table)."""
+    return state.label.split("/", 1)[0]
 
 
 def state_attempts(report: Mapping[str, Any]) -> list[StateAttempt]:

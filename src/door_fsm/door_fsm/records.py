@@ -66,7 +66,7 @@ class StateRecord:
         """This attempt as the TaskReport lists it (times rounded to 0.1 ms; unfinished while
         the state has no outcome)."""
         outcome = AttemptOutcome(self.outcome.value) if self.outcome else AttemptOutcome.UNFINISHED
-        return StateAttempt(self.state.label, self.attempt, outcome, round(self.planning_s, 4),
+        return StateAttempt(self.state, self.attempt, outcome, round(self.planning_s, 4),
                             round(self.waiting_s, 4), round(self.moving_s, 4), self.reason, dict(self.summary))
 
 
