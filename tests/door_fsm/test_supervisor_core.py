@@ -17,7 +17,7 @@ from door_contract.payloads import (
     encode,
 )
 from door_contract.stamps import time_msg_of_ns
-from door_contract.vocabulary import Autonomy, DoorOpening, HingeSide, Motion, Side, WalkGoal
+from door_contract.vocabulary import Autonomy, DoorOpening, HingeSide, Motion, Side, TaskState, WalkGoal
 from door_fsm import actions as act
 from door_fsm.graph_watch import GraphWatch
 from door_fsm.machine import MachineOptions
@@ -52,7 +52,7 @@ def _started(robot: SupervisedRobot, opening: DoorOpening = DoorOpening.PUSH) ->
     supervisor = Supervisor(MachineOptions(opening=opening, autonomy=Autonomy.FULL), "sqp", robot,
                             GraphWatch({"door_detector"}, start_at=0.0, graph_timeout=5.0))
     step, actions = supervisor.tick(t(0.0), {"door_detector"})
-    assert step.start and act.AnnounceState("DETECT_DOOR") in actions
+    assert step.start and act.AnnounceState(TaskState.DETECT_DOOR) in actions
     assert not any(isinstance(a, act.RequestDetection) for a in actions)  # the core waits for the detector
     supervisor.settle()
     return supervisor
@@ -101,7 +101,7 @@ def test_the_robots_answer_to_what_it_was_sent_finishes_the_state() -> None:
     assert supervisor.execution_outcome(encode(other), t(4.0)) == []  # not sent by this supervisor
     done = ExecutionOutcome(ExecutionKind.FOOTSTEPS, 42, OutcomeStatus.SUCCESS)
     actions = supervisor.execution_outcome(encode(done), t(5.0))
-    assert act.AnnounceState("OPEN_DOOR/MOVE_TO_HANDLE") in actions
+    assert act.AnnounceState(TaskState.MOVE_TO_HANDLE) in actions
 
 
 @pytest.mark.parametrize("feed, says", [

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from door_contract.vocabulary import Motion, PlannerKind, WalkGoal
+from door_contract.vocabulary import Motion, PlannerKind, TaskState, WalkGoal
 
 
 @dataclass(frozen=True)
@@ -84,7 +84,9 @@ class ClearApproval:
 
 @dataclass(frozen=True)
 class AnnounceState:
-    state: str
+    """Publish the state the machine entered (its label on ``/door_task/state``)."""
+
+    state: TaskState
     reason: str = ""
 
 

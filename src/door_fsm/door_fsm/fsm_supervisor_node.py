@@ -28,6 +28,7 @@ from door_contract.node_support import (
 )
 from door_contract.payloads import PlanningCancel, encode
 from door_contract.topics import PLANNER_TOPICS, Topics, TopicSpec
+from door_contract.vocabulary import TaskState
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.machine import MachineOptionsError
@@ -111,10 +112,11 @@ class FsmSupervisorNode(Node):
 
     # ------------------------------------------------------------------ actions
     def _announce(self, action: act.AnnounceState) -> None:
-        self.pubs[Topics.TASK_STATE].publish(String(data=action.state))
-        self.heartbeat.update(Health.ERROR if action.state == "FAILED" else Health.OK, action.state,
+        label = action.state.label
+        self.pubs[Topics.TASK_STATE].publish(String(data=label))
+        self.heartbeat.update(Health.ERROR if action.state is TaskState.FAILED else Health.OK, label,
                               reason=action.reason or "-", failure=self.core.machine.failure_reason or "-")
-        self.get_logger().info(f"state {action.state}" + (f" ({action.reason})" if action.reason else ""))
+        self.get_logger().info(f"state {label}" + (f" ({action.reason})" if action.reason else ""))
         clock = "sim" if self.get_parameter("use_sim_time").value else "wall"
         if (report := self.core.report(clock)) is not None:
             self.pubs[Topics.TASK_REPORT].publish(String(data=encode(report)))

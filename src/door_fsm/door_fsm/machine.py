@@ -142,7 +142,7 @@ class DoorTaskMachine:
     # ------------------------------------------------------------------ state entry and exit
     def _enter(self, state: TaskState, now: Instant, reason: str = "") -> list[act.Action]:
         self.state, self.phase, self._deadline = state, None, None
-        actions: list[act.Action] = [act.ClearApproval(), act.AnnounceState(state.label, reason)]
+        actions: list[act.Action] = [act.ClearApproval(), act.AnnounceState(state, reason)]
         if state in (TaskState.PAUSED, TaskState.MANUAL, TaskState.FAILED):
             actions.insert(0, act.StopMotion(f"{state.value}: {reason}" if reason else state.value))
         work = STATE_WORK.get(state)
