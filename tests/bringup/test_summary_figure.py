@@ -73,7 +73,7 @@ def _synthetic_bag(path):
 def test_run_series_from_a_bag(tmp_path):
     posture = _synthetic_bag(tmp_path / "bag")
     run = read_run(tmp_path / "bag", opening="push")
-    assert run.states == [(pytest.approx(1.0), "OPEN_DOOR/PUSH")]  # wall 5 s ↔ sim 1 s through /clock
+    assert run.states == [(pytest.approx(1.0), TaskState.PUSH)]  # wall 5 s ↔ sim 1 s through /clock
     assert len(run.com) == len(run.hands["right"]) == 21 and np.all(run.com[:, 3] > 0.0)
     kinematics = RobotKinematics(load_profile("talos"))
     q = kinematics.configuration({**posture, "arm_right_4_joint": -1.5})

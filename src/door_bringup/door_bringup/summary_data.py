@@ -3,7 +3,9 @@
 Everything comes from the bus; what the bus does not carry is derived, and says so:
 
 * **time** is simulated time: header stamps where messages have them; the FSM's states
-  (no header) are placed by the recorded /clock, interpolated at their bag time stamps;
+  (no header) are placed by the recorded /clock, interpolated at their bag time stamps, and
+  read by their labels (a text that is no state's label is a ContractError, as a malformed
+  door estimate is);
 * **door angle**: the simulated hinge on /sim/door_joint_states (ground truth, evaluation only);
 * **hands**: each tool-centre point from /joint_states and /odom through Pinocchio
   (``odom_T_tcp = odom_T_base · base_T_tcp(q)``);
@@ -36,6 +38,7 @@ from door_contract.geometry import planar_pose
 from door_contract.payloads import DoorEstimate, decode
 from door_contract.stamps import from_time_msg
 from door_contract.topics import Topics
+from door_contract.vocabulary import TaskState
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_sim_bridge.world.door import HINGE_JOINT
@@ -50,7 +53,7 @@ class RunSeries:
 
     estimate: DoorEstimate | None
     opening: str
-    states: list[tuple[float, str]]  # (sim time, state) at each change
+    states: list[tuple[float, TaskState]]  # (sim time, state) at each change
     footsteps: list  # FootPlacement of every executed plan
     base: np.ndarray  # (N, 3): t, x, y
     door: np.ndarray  # (N, 2): t, hinge angle (rad)
@@ -129,7 +132,7 @@ def read_run(bag: Path, robot_profile: str = "talos", opening: str | None = None
     estimate = decode(DoorEstimate, json.dumps(estimates[-1])) if estimates else None
     requests = _json_payloads(bus[Topics.FOOTSTEP_REQUEST.name]) + _json_payloads(bus[Topics.MOTION_REQUEST.name])
     opening = opening or (requests[0]["opening"] if requests else "push")
-    states = [(sim_time(ns), msg.data) for ns, msg in bus[Topics.TASK_STATE.name]]
+    states = [(sim_time(ns), TaskState.of_label(msg.data)) for ns, msg in bus[Topics.TASK_STATE.name]]
     footsteps = [step for _, plan in bus[Topics.FOOTSTEP_PLAN.name] for step in path_to_footsteps(plan)]
     door = np.array([(from_time_msg(m.header.stamp), joint_state_to_positions(m).get(HINGE_JOINT, 0.0))
                      for _, m in bus[Topics.DOOR_JOINT_STATES.name]]).reshape(-1, 2)

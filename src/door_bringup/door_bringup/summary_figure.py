@@ -21,7 +21,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from door_bringup.summary_data import RunSeries, read_run  # noqa: E402
-from door_contract.vocabulary import Foot
+from door_contract.vocabulary import Foot, TaskState
 from door_viz.proposals import leaf_axes  # noqa: E402
 
 if TYPE_CHECKING:
@@ -57,11 +57,11 @@ def _top_view(axes: Axes, run: RunSeries, foot_size: tuple[float, float]) -> Non
 
 def _state_bands(axes: Axes, run: RunSeries, end: float) -> None:
     """The FSM's states as shaded bands, labelled once each."""
-    changes = run.states + [(end, "")]
+    changes: list[tuple[float, TaskState | None]] = [*run.states, (end, None)]
     for index, ((start, state), (stop, _)) in enumerate(zip(changes[:-1], changes[1:])):
-        if stop > start and state:
+        if stop > start and state is not None:
             axes.axvspan(start, stop, color=f"C{index % 10}", alpha=0.08)
-            axes.text((start + stop) / 2, 1.0, state.split("/")[-1], transform=axes.get_xaxis_transform(),
+            axes.text((start + stop) / 2, 1.0, state.value, transform=axes.get_xaxis_transform(),
                       rotation=90, fontsize=6, va="top", ha="center", alpha=0.8)
 
 
@@ -123,7 +123,7 @@ def plot_summary(bag: Path, output: Path, robot_profile: str = "talos", opening:
     _hand_distance(figure.add_subplot(grid[1, 1]), run, end)
     _com_margin(figure.add_subplot(grid[2, 0], sharex=door), run, end)
     _support_at_smallest_margin(figure.add_subplot(grid[2, 1]), run)
-    figure.suptitle(f"Door task: {run.opening} door, last state {run.states[-1][1] if run.states else '?'}")
+    figure.suptitle(f"Door task: {run.opening} door, last state {run.states[-1][1].label if run.states else '?'}")
     figure.tight_layout()
     figure.savefig(output, dpi=100)
     plt.close(figure)
