@@ -131,7 +131,8 @@ class Autonomy(StrEnum):
 
 
 class TaskEnd(StrEnum):
-    """How the door task ended (``TaskReport.final_state``: the FSM's two terminal states)."""
+    """How the door task ended (``TaskReport.final_state``): the FSM's two terminal states
+    (:attr:`TaskState.end`), spelled as their labels."""
 
     DONE = "DONE"
     FAILED = "FAILED"
@@ -169,8 +170,13 @@ class TaskState(Enum):
     FAILED = "FAILED"
 
     @property
+    def end(self) -> TaskEnd | None:
+        """How the task ended, in a terminal state (DONE, FAILED); None in any other."""
+        return _TASK_ENDS.get(self)
+
+    @property
     def is_terminal(self) -> bool:
-        return self in (TaskState.DONE, TaskState.FAILED)
+        return self.end is not None
 
     @property
     def is_open_door_substate(self) -> bool:
@@ -204,6 +210,7 @@ OPEN_DOOR_SUBSTATES = frozenset({TaskState.MOVE_TO_HANDLE, TaskState.GRASP, Task
                                  TaskState.PUSH, TaskState.PULL, TaskState.BLOCK,
                                  TaskState.READY_TO_WALK})
 WALK_THROUGH_SUBSTATES = frozenset({TaskState.TO_DOORWAY, TaskState.TUCK})
+_TASK_ENDS = {TaskState.DONE: TaskEnd.DONE, TaskState.FAILED: TaskEnd.FAILED}
 _STATES_BY_LABEL = {state.label: state for state in TaskState}
 
 

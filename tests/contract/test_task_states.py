@@ -4,7 +4,7 @@ label names a state."""
 import pytest
 
 from door_contract.errors import ContractError
-from door_contract.vocabulary import OPEN_DOOR_SUBSTATES, WALK_THROUGH_SUBSTATES, TaskState
+from door_contract.vocabulary import OPEN_DOOR_SUBSTATES, WALK_THROUGH_SUBSTATES, TaskEnd, TaskState
 
 
 def test_a_sub_state_is_labelled_with_its_phase_first():
@@ -14,6 +14,12 @@ def test_a_sub_state_is_labelled_with_its_phase_first():
     assert all(state.is_open_door_substate for state in OPEN_DOOR_SUBSTATES)
     assert all(state.is_walk_through_substate for state in WALK_THROUGH_SUBSTATES)
     assert {state for state in TaskState if state.is_terminal} == {TaskState.DONE, TaskState.FAILED}
+
+
+def test_the_terminal_states_are_the_task_ends_spelled_alike():
+    """TaskReport.final_state (a TaskEnd) reads as the last /door_task/state (a label)."""
+    assert {state.end: state.label for state in TaskState if state.is_terminal} == {end: end.value for end in TaskEnd}
+    assert TaskState.WALK_THROUGH.end is None and TaskState.PAUSED.end is None
 
 
 def test_of_label_inverts_label_for_every_state():

@@ -17,7 +17,17 @@ from door_contract.payloads import (
     encode,
 )
 from door_contract.stamps import time_msg_of_ns
-from door_contract.vocabulary import Autonomy, DoorOpening, HingeSide, Motion, Side, TaskState, WalkGoal
+from door_contract.vocabulary import (
+    AttemptOutcome,
+    Autonomy,
+    DoorOpening,
+    HingeSide,
+    Motion,
+    Side,
+    TaskEnd,
+    TaskState,
+    WalkGoal,
+)
 from door_fsm import actions as act
 from door_fsm.graph_watch import GraphWatch
 from door_fsm.machine import MachineOptions
@@ -200,3 +210,12 @@ def test_the_grasp_hand_is_the_arm_the_approach_moved_and_later_requests_name_it
     from door_fsm import actions as fsm_actions
     request = supervisor.door.motion_request(fsm_actions.RequestMotion(12, Motion.TURN_HANDLE, 0))
     assert request.hand is Side.LEFT
+
+
+def test_the_report_waits_for_a_terminal_state_and_names_how_the_task_ended() -> None:
+    supervisor = _started(SupervisedRobot("g1", 0.8, HANDS_ONLY))
+    assert supervisor.report("sim") is None
+    supervisor.operator("abort", t(1.0))
+    report = supervisor.report("sim")
+    assert report is not None and report.final_state is TaskEnd.FAILED
+    assert [(a.state, a.outcome) for a in report.attempts] == [(TaskState.DETECT_DOOR, AttemptOutcome.ABORTED)]

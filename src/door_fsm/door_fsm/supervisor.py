@@ -33,7 +33,7 @@ from door_contract.payloads import (
 )
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Services, ServiceSpec
-from door_contract.vocabulary import Autonomy, Backend, DoorOpening, PlannerKind, Side, TaskEnd, TaskState
+from door_contract.vocabulary import Autonomy, Backend, DoorOpening, PlannerKind, Side, TaskState
 from door_fsm import actions as act
 from door_fsm import events as ev
 from door_fsm.answers import execution_event, planning_event, usable_door_estimate
@@ -247,10 +247,11 @@ class Supervisor:
 
     def report(self, robot_clock: str) -> TaskReport | None:
         """The TaskReport once the task has ended (``robot_clock``: "sim" or "wall"), else None."""
-        if not self.machine.state.is_terminal:
+        end = self.machine.state.end
+        if end is None:
             return None
-        return task_report(TaskEnd(self.machine.state.value), self.machine.failure_reason, self.door.opening,
-                           self.machine.options.autonomy, self.machine.report(), robot_clock)
+        return task_report(end, self.machine.failure_reason, self.door.opening, self.machine.options.autonomy,
+                           self.machine.report(), robot_clock)
 
     def _answer(self, answer: Proposal | PlanningOutcome | None, now: Instant) -> list[act.Action]:
         if answer is None:
