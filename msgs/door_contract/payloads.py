@@ -180,7 +180,15 @@ class PlanningCancel:
 ProposalSummary = dict[str, str | float | int]
 """What the operator is shown of a proposal, figure by figure (``steps``, ``cost``,
 ``planning_ms``, a door estimate's ``width_m``, ...): the approval request's text and a state
-attempt's record of it."""
+attempt's record of it.
+
+Deliberately an open mapping, not typed dataclasses: it is a rendering of figures that are
+typed where they are read (:class:`DoorEstimate`, :class:`FootstepFigures`,
+:class:`MotionFigures`, built by ``door_fsm.summaries``), nothing reads a figure back out of
+it, and what it holds is shown in insertion order and stored as a flat JSON object that old
+``trial.json`` files must still decode to. A union of summary classes would repeat those
+figures and need a union, flattened encoding and a key-guessing decoder in this codec, for no
+change an operator or a report could see."""
 
 
 @dataclasses.dataclass(frozen=True)
