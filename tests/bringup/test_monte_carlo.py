@@ -18,7 +18,9 @@ from door_bringup.monte_carlo import (
     run_trials,
     sample_trial,
     summary,
+    wall_time_line,
 )
+from door_bringup.table_one import format_table, phase_rows
 from door_bringup.workspace import Workspace
 
 
@@ -72,6 +74,28 @@ def test_falls_are_counted_per_phase_from_the_attempts_outcome():
     pull = [_fell_in("WALK_THROUGH/TO_DOORWAY"), _fell_in("WALK_THROUGH/TO_DOORWAY"), _fell_in("WALK_THROUGH")]
     assert falls_line(pull) == "Falls: 3/3 runs (WALK_THROUGH 3 (TO_DOORWAY 2, WALK_THROUGH 1))"
     assert "Falls: 3/5" in summary(reports)
+
+
+def test_table_one_counts_each_phases_falls_and_slips():
+    """Table I has a falls and a slips column per phase: a fall ends its run in the phase it
+    happened in; a slip sends OPEN_DOOR back to MOVE_TO_HANDLE, so one run may slip twice."""
+    slipped = _report("push", True, 1.0, 0.5)
+    slip = {"state": "OPEN_DOOR/TURN_HANDLE", "attempt": 1, "outcome": "slipped", "planning_s": 0.1,
+            "moving_s": 2.0, "waiting_s": 0.0, "reason": "hand slipped"}
+    slipped["attempts"] += [slip, {**slip, "attempt": 2}, {**slip, "attempt": 3, "outcome": "succeeded"}]
+    rows = {row.phase: row for row in phase_rows([slipped, _fell_in("WALK_THROUGH"), _fell_in("WALK_THROUGH")])}
+    assert (rows["OPEN_DOOR"].slips, rows["OPEN_DOOR"].falls, rows["OPEN_DOOR"].successes) == (2, 0, 1)
+    assert (rows["WALK_THROUGH"].falls, rows["WALK_THROUGH"].runs, rows["WALK_THROUGH"].successes) == (2, 2, 0)
+    table = format_table(list(rows.values()), 3, 1, "push doors")
+    assert "| phase | success | falls | slips |" in table
+    assert "| OPEN_DOOR | 1/1 (100 %) | 0 | 2 |" in table and "| WALK_THROUGH | 0/2 (0 %) | 2 | 0 |" in table
+    assert "| **overall** | **1/3 (33 %)** | 2 | 2 |" in table
+
+
+def test_the_wall_time_per_trial_is_its_median_and_range():
+    reports = [{**_report("push", True, 1.0, 0.5), "wall_time_s": seconds} for seconds in (300.4, 120.0, 250.0)]
+    assert wall_time_line(reports) == "Wall time per trial: median 250 s (min 120 s, max 300 s)"
+    assert wall_time_line([_report("push", True, 1.0, 0.5)]) == "Wall time per trial: not recorded"
 
 
 def test_a_resumed_run_reads_its_finished_trials_and_runs_none_again(tmp_path):

@@ -226,7 +226,7 @@ def summary(reports: list[dict]) -> str:
     failures = [f"- trial {i}: {r['failure_reason']}" for i, r in enumerate(reports) if r["final_state"] != TaskEnd.DONE]
     return "\n\n".join(sections + [f"**All doors: {ok}/{len(reports)} "
                                    f"({100.0 * ok / max(len(reports), 1):.0f} %); target ≥ 98 %**",
-                                   overhead_line(reports), falls_line(reports),
+                                   overhead_line(reports), falls_line(reports), wall_time_line(reports),
                                    "Failures:\n" + ("\n".join(failures) or "- none")]) + "\n"
 
 
@@ -249,6 +249,16 @@ def _sub_states(phase: str, states: Counter[TaskState]) -> str:
     if len(within) == 1 and phase in within:
         return ""
     return " (" + ", ".join(f"{state} {n}" for state, n in sorted(within.items())) + ")"
+
+
+def wall_time_line(reports: list[dict]) -> str:
+    """Wall time per trial (the graph's start to its stop), as the campaign ran it (``--jobs``
+    graphs sharing the machine's cores)."""
+    times = sorted(float(r["wall_time_s"]) for r in reports if "wall_time_s" in r)
+    if not times:
+        return "Wall time per trial: not recorded"
+    return (f"Wall time per trial: median {statistics.median(times):.0f} s (min {times[0]:.0f} s, "
+            f"max {times[-1]:.0f} s)")
 
 
 def overhead_line(reports: list[dict]) -> str:

@@ -21,10 +21,40 @@ class PhaseRow:
     planning_s: float  # mean per run
     moving_s: float  # mean per run
     waiting_s: float  # mean per run (operator)
+    falls: int = 0  # runs in which the robot fell in this phase
+    slips: int = 0  # attempts of this phase that ended with the hand slipping off the handle
 
     @property
     def success_rate(self) -> float:
         return self.successes / self.runs if self.runs else 0.0
+
+
+@dataclass
+class _PhaseTally:
+    """One phase's sums over the runs (:func:`phase_rows`)."""
+
+    runs: int = 0
+    successes: int = 0
+    falls: int = 0
+    slips: int = 0
+    planning_s: float = 0.0
+    moving_s: float = 0.0
+    waiting_s: float = 0.0
+
+    def add_run(self, attempts: list[StateAttempt]) -> None:
+        """One run's attempts at this phase: it succeeded when its last attempt did."""
+        self.runs += 1
+        self.successes += int(attempts[-1].outcome is AttemptOutcome.SUCCEEDED)
+        self.falls += int(any(attempt.outcome is AttemptOutcome.FELL for attempt in attempts))
+        self.slips += sum(int(attempt.outcome is AttemptOutcome.SLIPPED) for attempt in attempts)
+        self.planning_s += sum(attempt.planning_s for attempt in attempts)
+        self.moving_s += sum(attempt.moving_s for attempt in attempts)
+        self.waiting_s += sum(attempt.waiting_s for attempt in attempts)
+
+    def row(self, phase: str) -> PhaseRow:
+        runs = max(self.runs, 1)
+        return PhaseRow(phase, self.runs, self.successes, self.planning_s / runs, self.moving_s / runs,
+                        self.waiting_s / runs, self.falls, self.slips)
 
 
 def phase_of(state: TaskState) -> str:
@@ -44,46 +74,33 @@ def state_attempts(report: Mapping[str, Any]) -> list[StateAttempt]:
 
 def phase_rows(reports: Iterable[Mapping[str, Any]]) -> list[PhaseRow]:
     """Rows over one or many TaskReports (dicts): a phase succeeds in a run when its last
-    attempt succeeded and the run went on past it."""
-    totals: dict[str, list[float]] = defaultdict(lambda: [0, 0, 0.0, 0.0, 0.0])
+    attempt succeeded and the run went on past it; its falls and slips are counted too."""
+    tallies = {phase: _PhaseTally() for phase in PHASES}
     for report in reports:
-        seen: dict[str, dict] = {}
+        by_phase: dict[str, list[StateAttempt]] = defaultdict(list)
         for attempt in state_attempts(report):
-            phase = phase_of(attempt.state)
-            entry = seen.setdefault(phase, {"ok": True, "plan": 0.0, "move": 0.0, "wait": 0.0})
-            entry["plan"] += attempt.planning_s
-            entry["move"] += attempt.moving_s
-            entry["wait"] += attempt.waiting_s
-            entry["last"] = attempt.outcome
-        for phase, entry in seen.items():
-            row = totals[phase]
-            row[0] += 1
-            row[1] += 1 if entry["last"] is AttemptOutcome.SUCCEEDED else 0
-            row[2] += entry["plan"]
-            row[3] += entry["move"]
-            row[4] += entry["wait"]
-    rows = []
-    for phase in PHASES:
-        runs, ok, plan, move, wait = totals.get(phase, [0, 0, 0.0, 0.0, 0.0])
-        rows.append(PhaseRow(phase, int(runs), int(ok), plan / runs if runs else 0.0,
-                             move / runs if runs else 0.0, wait / runs if runs else 0.0))
-    return rows
+            by_phase[phase_of(attempt.state)].append(attempt)
+        for phase, attempts in by_phase.items():
+            if phase in tallies:
+                tallies[phase].add_run(attempts)
+    return [tallies[phase].row(phase) for phase in PHASES]
 
 
 CLOCKS = "planning and operator time: wall clock; moving time: the robot's clock (sim time) — docs/CLOCKS.md"
 
 
 def format_table(rows: list[PhaseRow], overall_runs: int, overall_successes: int, title: str) -> str:
-    """Markdown table: phase | success | planning time | moving time | operator time, and the
-    clock each column is measured on."""
+    """Markdown table: phase | success | falls | slips | planning time | moving time | operator
+    time, and the clock each column is measured on."""
     lines = [f"### {title}", "", f"({CLOCKS})", "",
-             "| phase | success | planning time (wall) | moving time (robot) | operator time (wall) |",
-             "|---|---|---|---|---|"]
+             "| phase | success | falls | slips | planning time (wall) | moving time (robot) | operator time (wall) |",
+             "|---|---|---|---|---|---|---|"]
     for row in rows:
-        lines.append(f"| {row.phase} | {row.successes}/{row.runs} ({100 * row.success_rate:.0f} %) | "
-                     f"{row.planning_s:.3f} s | {row.moving_s:.1f} s | {row.waiting_s:.1f} s |")
+        lines.append(f"| {row.phase} | {row.successes}/{row.runs} ({100 * row.success_rate:.0f} %) | {row.falls} | "
+                     f"{row.slips} | {row.planning_s:.3f} s | {row.moving_s:.1f} s | {row.waiting_s:.1f} s |")
     rate = 100.0 * overall_successes / overall_runs if overall_runs else 0.0
     lines.append(f"| **overall** | **{overall_successes}/{overall_runs} ({rate:.0f} %)** | "
+                 f"{sum(r.falls for r in rows)} | {sum(r.slips for r in rows)} | "
                  f"{sum(r.planning_s for r in rows):.3f} s | {sum(r.moving_s for r in rows):.1f} s | "
                  f"{sum(r.waiting_s for r in rows):.1f} s |")
     return "\n".join(lines)
