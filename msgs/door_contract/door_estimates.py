@@ -8,6 +8,9 @@ from collections import OrderedDict
 from door_contract.payloads import DoorEstimate, decode
 from door_contract.ranges import FieldRange
 
+__all__ = ["DOOR_ANGLE_RANGE", "DOOR_WIDTH_RANGE", "DoorEstimateHistory", "door_angle_problem", "door_estimate_problem",
+           "requested_estimate_problem"]
+
 DOOR_WIDTH_RANGE = FieldRange(0.3, 2.5, "m")
 """Door widths a planner accepts (the detector's width parameters stay inside it)."""
 

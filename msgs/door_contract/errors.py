@@ -5,6 +5,8 @@
 reject the ``ValueError`` of a bug (numpy, float(), an enum lookup) as bad input.
 """
 
+__all__ = ["ContractError", "EncodingError", "NonFiniteError", "ParameterRangeError", "ShapeError"]
+
 
 class ContractError(Exception):
     """A message or parameter does not satisfy the contract; the message says which part."""

@@ -7,6 +7,8 @@ from enum import Enum
 
 import numpy as np
 
+__all__ = ["Frame", "FrameTransform"]
+
 
 class Frame(str, Enum):
     """Coordinate frames used on the bus. Axes follow REP-103: x forward, y left, z up."""

@@ -6,6 +6,8 @@ import math
 
 import numpy as np
 
+__all__ = ["planar_pose", "yaw_of"]
+
 
 def planar_pose(x: float, y: float, yaw: float, z: float = 0.0) -> np.ndarray:
     """4×4 transform of a pose in the ground plane (rotation about z by ``yaw``)."""

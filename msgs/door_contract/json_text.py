@@ -17,6 +17,8 @@ import numpy as np
 
 from door_contract.errors import ContractError
 
+__all__ = ["MAX_PAYLOAD_CHARS", "MAX_PAYLOAD_DEPTH", "nesting_depth", "parse_bounded", "read_request_id"]
+
 MAX_PAYLOAD_CHARS = 4_000_000
 """Largest payload accepted (characters). A planning outcome carrying a 200-waypoint
 trajectory twice is ~100 kB; camera data never travels as JSON."""

@@ -8,6 +8,8 @@ from enum import Enum
 
 import numpy as np
 
+__all__ = ["MarkerKind", "MarkerShape"]
+
 
 class MarkerKind(str, Enum):
     """The ``visualization_msgs/Marker`` types the graph draws."""

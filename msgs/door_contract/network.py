@@ -13,6 +13,8 @@ from __future__ import annotations
 import os
 from collections.abc import MutableMapping
 
+__all__ = ["DISCOVERY_RANGE", "LOCAL_RANGE", "keep_discovery_local"]
+
 DISCOVERY_RANGE = "ROS_AUTOMATIC_DISCOVERY_RANGE"
 LOCAL_RANGE = "LOCALHOST"
 

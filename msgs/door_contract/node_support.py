@@ -27,6 +27,10 @@ from door_contract.network import keep_discovery_local
 from door_contract.parameters import ParameterSpec, ParameterValue
 from door_contract.topics import Topics, TopicSpec
 
+__all__ = ["Heartbeat", "NodeMain", "StopRequest", "as_parameter_error", "create_contract_publisher",
+           "create_contract_subscription", "declare_parameters", "node_main", "report_undeclared_parameters",
+           "run_node"]
+
 
 def _descriptor(spec: ParameterSpec) -> ParameterDescriptor:
     descriptor = ParameterDescriptor(

@@ -22,6 +22,8 @@ import yaml
 from door_contract.errors import ParameterRangeError
 from door_contract.ranges import FieldRange, check_in_range
 
+__all__ = ["ParameterSpec", "ParameterValue", "defaults", "read_params_file", "require_ordered", "validate_all"]
+
 ParameterValue = bool | int | float | str | tuple[Any, ...]
 
 

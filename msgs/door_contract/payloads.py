@@ -34,6 +34,10 @@ from door_contract.vocabulary import (
     WalkGoal,
 )
 
+__all__ = ["DoorEstimate", "ExecutionKind", "ExecutionOutcome", "FootstepFigures", "FootstepRequest", "MotionFigures",
+           "MotionRequest", "OutcomeStatus", "PlanningCancel", "PlanningOutcome", "ProposalSummary", "StateAttempt",
+           "TaskReport", "decode", "decode_document", "encode", "encode_document", "finite_or_none"]
+
 Payload = TypeVar("Payload")
 
 

@@ -23,6 +23,8 @@ from door_contract.payloads import DoorEstimate, PlanningCancel, decode
 from door_contract.planner_service import Finished, PlanningWorker, decode_request
 from door_contract.topics import TopicSpec
 
+__all__ = ["PlannerDesk", "Submit"]
+
 Submit = Callable[[Any, DoorEstimate | None], Callable[[], Any]]  # (request, door) → the planning job
 
 

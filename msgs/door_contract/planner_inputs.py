@@ -20,6 +20,8 @@ from door_contract.node_support import Heartbeat, create_contract_subscription
 from door_contract.payloads import DoorEstimate, decode
 from door_contract.topics import Topics
 
+__all__ = ["PlannerInputs"]
+
 
 class PlannerInputs:
     def __init__(self, node: Node, heartbeat: Heartbeat) -> None:

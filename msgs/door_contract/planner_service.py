@@ -31,6 +31,8 @@ from door_contract.errors import ContractError
 from door_contract.json_text import read_request_id
 from door_contract.payloads import OutcomeStatus, decode
 
+__all__ = ["CancelResult", "Finished", "PlanningWorker", "decode_request", "request_id_of"]
+
 Request = TypeVar("Request")
 
 

@@ -15,6 +15,9 @@ if TYPE_CHECKING:  # the contract stays ROS-free at run time: rclpy is imported 
 
     from rclpy.qos import QoSProfile
 
+__all__ = ["CLOCK", "EVENTS", "LATCHED", "REQUESTS", "SENSOR", "SERVICE", "TF_STREAM", "Durability", "QosSpec",
+           "Reliability", "matching_subscription"]
+
 
 class Reliability(str, Enum):
     RELIABLE = "reliable"

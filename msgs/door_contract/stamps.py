@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from builtin_interfaces.msg import Time
 
+__all__ = ["Stamp", "UniqueStamps", "from_time_msg", "stamp_ns", "time_msg_of_ns", "to_time_msg"]
+
 Stamp = float  # seconds
 
 

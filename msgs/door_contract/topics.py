@@ -16,6 +16,8 @@ from door_contract.frames import Frame
 from door_contract.qos import CLOCK, EVENTS, LATCHED, REQUESTS, SENSOR, SERVICE, TF_STREAM, QosSpec
 from door_contract.vocabulary import PlannerKind
 
+__all__ = ["PLANNER_TOPICS", "PlannerTopics", "ServiceSpec", "Services", "TopicSpec", "Topics", "interface_class"]
+
 
 @dataclass(frozen=True)
 class TopicSpec:

@@ -138,7 +138,8 @@ def test_readme_topic_table_lists_every_topic():
 
 
 def test_door_estimate_round_trip_and_nan_rejected():
-    from door_contract.payloads import DoorEstimate, HingeSide
+    from door_contract.payloads import DoorEstimate
+    from door_contract.vocabulary import HingeSide
 
     estimate = DoorEstimate(1.5, "odom", (1.0, 0.3, 0.9), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
                             ((1.0, -0.45, 0.0), (1.0, 0.45, 0.0), (1.0, 0.45, 2.0), (1.0, -0.45, 2.0)),

@@ -7,6 +7,8 @@ import numpy.typing as npt
 
 from door_contract.errors import NonFiniteError
 
+__all__ = ["require_finite"]
+
 
 def require_finite(values: npt.ArrayLike, what: str) -> np.ndarray:
     """``values`` as a float array, or :class:`NonFiniteError` naming ``what``."""

@@ -11,6 +11,8 @@ from door_contract.converters._checks import require_finite
 from door_contract.errors import ShapeError
 from door_contract.stamps import Stamp, to_time_msg
 
+__all__ = ["CameraIntrinsics", "camera_info_to_intrinsics", "check_matches_image", "intrinsics_to_camera_info"]
+
 
 @dataclass(frozen=True)
 class CameraIntrinsics:

@@ -9,6 +9,8 @@ from diagnostic_msgs.msg import DiagnosticArray, DiagnosticStatus, KeyValue
 
 from door_contract.stamps import Stamp, to_time_msg
 
+__all__ = ["Health", "diagnostic_array", "status_values"]
+
 
 class Health(IntEnum):
     OK = 0

@@ -22,6 +22,8 @@ from door_contract.geometry import planar_pose, yaw_of
 from door_contract.stamps import Stamp, to_time_msg
 from door_contract.vocabulary import Foot
 
+__all__ = ["FootPlacement", "foot_of_index", "footsteps_to_path", "path_to_footsteps"]
+
 
 @dataclass(frozen=True)
 class FootPlacement:

@@ -17,6 +17,8 @@ from sensor_msgs.msg import Image
 from door_contract.errors import EncodingError, ShapeError
 from door_contract.stamps import Stamp, to_time_msg
 
+__all__ = ["PIXEL_FORMATS", "PixelFormat", "array_to_image", "depth_to_metres", "image_to_array"]
+
 
 @dataclass(frozen=True)
 class PixelFormat:

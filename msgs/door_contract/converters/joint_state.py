@@ -11,6 +11,8 @@ from door_contract.converters._checks import require_finite
 from door_contract.errors import ShapeError
 from door_contract.stamps import Stamp, to_time_msg
 
+__all__ = ["joint_state_to_positions", "positions_to_joint_state"]
+
 
 def joint_state_to_positions(msg: JointState) -> dict[str, float]:
     """Positions by joint name (rad or m); rejects size mismatch, duplicates, NaN/inf."""

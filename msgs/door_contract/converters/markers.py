@@ -13,6 +13,8 @@ from door_contract.frames import Frame
 from door_contract.marker_shapes import MarkerKind, MarkerShape
 from door_contract.stamps import Stamp, to_time_msg
 
+__all__ = ["shape_to_marker", "shapes_to_marker_array"]
+
 _TYPES = {MarkerKind.ARROW: Marker.ARROW, MarkerKind.CUBE: Marker.CUBE, MarkerKind.SPHERE: Marker.SPHERE,
           MarkerKind.LINE_STRIP: Marker.LINE_STRIP, MarkerKind.LINE_LIST: Marker.LINE_LIST,
           MarkerKind.TRIANGLE_LIST: Marker.TRIANGLE_LIST, MarkerKind.TEXT: Marker.TEXT_VIEW_FACING}

@@ -10,6 +10,8 @@ from door_contract.converters._checks import require_finite
 from door_contract.errors import NonFiniteError, ShapeError
 from door_contract.stamps import Stamp, to_time_msg
 
+__all__ = ["matrix_to_pose", "matrix_to_pose_stamped", "pose_stamped_to_matrix", "pose_to_matrix"]
+
 
 def pose_to_matrix(pose: Pose) -> np.ndarray:
     """4×4 transform; rejects NaN/inf and zero quaternions (normalises the others)."""

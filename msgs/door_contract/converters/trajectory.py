@@ -11,6 +11,8 @@ from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 from door_contract.converters._checks import require_finite
 from door_contract.errors import ShapeError
 
+__all__ = ["JointPath", "joint_path_to_msg", "msg_to_joint_path"]
+
 
 @dataclass(frozen=True, eq=False)
 class JointPath:

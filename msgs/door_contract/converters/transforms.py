@@ -21,6 +21,9 @@ from door_contract.errors import ShapeError
 from door_contract.frames import FrameTransform
 from door_contract.stamps import Stamp, to_time_msg
 
+__all__ = ["TfMessageBuffer", "frame_transform_to_msg", "matrix_to_transform", "msg_to_frame_transform", "tf_message",
+           "tf_message_frames", "tf_messages_available", "transform_to_matrix"]
+
 
 def tf_messages_available() -> bool:
     """True when ``tf2_msgs`` can be imported (built by set-up, or the system's)."""
