@@ -4,6 +4,8 @@
 callers catch it by name and a bug's ``ValueError`` is never taken for a bad profile.
 """
 
+__all__ = ["RobotModelError"]
+
 
 class RobotModelError(Exception):
     """A profile that cannot be loaded or used: missing URDF, unknown joint or frame."""

@@ -25,6 +25,8 @@ from door_contract.vocabulary import Side
 from door_robot.errors import RobotModelError
 from door_robot.profile import RobotProfile
 
+__all__ = ["RobotKinematics", "to_world"]
+
 
 @dataclass
 class _EvaluatedConfiguration:

@@ -15,6 +15,9 @@ import os
 import sysconfig
 from pathlib import Path
 
+__all__ = ["PROFILES_SHARE", "checkout_of_this_module", "cmeel_share_dir", "find_checkout",
+           "package_folder_of_these_sources", "params_dir", "shared_data_dir"]
+
 
 def find_checkout(start: Path) -> Path | None:
     """The nearest folder above ``start`` holding ``ros_ws/src`` and ``params/`` (the checkout),

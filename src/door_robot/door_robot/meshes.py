@@ -23,6 +23,8 @@ from pathlib import Path
 
 from door_robot.locations import cmeel_share_dir
 
+__all__ = ["PACKAGE_URI", "MeshUris", "package_roots", "resolve_package_uri", "rewrite_mesh_uris"]
+
 PACKAGE_URI = re.compile(r"package://(?P<package>[A-Za-z0-9_.\-]+)/(?P<path>[^\"'<>\s]+)")
 MESH_SUFFIXES = frozenset({".stl", ".dae", ".obj", ".glb", ".gltf", ".png", ".jpg", ".jpeg", ".mtl"})
 

@@ -32,6 +32,9 @@ from door_contract.vocabulary import Side
 from door_robot.errors import RobotModelError
 from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
 
+__all__ = ["ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "RobotProfile", "WalkingLimits", "load_profile",
+           "profile_path", "resolve_urdf"]
+
 
 @dataclass(frozen=True)
 class ExtraFrame:
