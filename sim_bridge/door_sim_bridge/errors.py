@@ -4,6 +4,8 @@
 so a bug's ``ValueError`` is never reported as a bad configuration or command.
 """
 
+__all__ = ["SimulationError"]
+
 
 class SimulationError(Exception):
     """A configuration value out of range, an unknown joint or link, or a misuse of the world.

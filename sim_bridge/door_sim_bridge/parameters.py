@@ -8,6 +8,8 @@ from door_contract.parameters import ParameterSpec
 from door_contract.ranges import FieldRange
 from door_sim_bridge.world_ranges import CAMERA_RANGES, DOOR_RANGES, STANCE_RANGES, WIND_RANGES, WORLD_RANGES
 
+__all__ = ["BRIDGE_PARAMETERS", "NODE_NAME"]
+
 NODE_NAME = "sim_bridge"
 
 BRIDGE_PARAMETERS = (

@@ -19,6 +19,8 @@ from door_robot.meshes import MeshUris, rewrite_mesh_uris
 from door_sim_bridge.world import DoorWorld
 from door_sim_bridge.world.robot_urdf import resolve_mesh
 
+__all__ = ["loaded_urdf", "profile_mesh_names", "robot_description"]
+
 
 def profile_mesh_names(urdf_text: str, profile_urdf: Path) -> str:
     """``urdf_text`` with every mesh the sim resolved (:func:`resolve_mesh`) named as in

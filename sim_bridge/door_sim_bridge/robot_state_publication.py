@@ -19,6 +19,8 @@ from door_sim_bridge.robot_description import loaded_urdf, robot_description
 from door_sim_bridge.tf_tree import world_tf_tree
 from door_sim_bridge.world import DoorWorld
 
+__all__ = ["RobotStatePublication"]
+
 
 class RobotStatePublication:
     def __init__(self, node: Node, world: DoorWorld, mesh_uris: MeshUris, now: float) -> None:

@@ -54,6 +54,8 @@ from door_sim_bridge.simulation_loop import STEPS_PER_TICK, LoopReport, Publicat
 from door_sim_bridge.world import DoorWorld
 from door_sim_bridge.world_parameters import world_config
 
+__all__ = ["SimBridgeNode", "main"]
+
 
 class SimBridgeNode(Node):
     def __init__(self) -> None:

@@ -30,6 +30,8 @@ from door_sim_bridge.urdf_joints import joint_transforms, root_link, urdf_joints
 from door_sim_bridge.world import DoorWorld
 from door_sim_bridge.world.transforms import invert
 
+__all__ = ["RobotState", "RobotTfTree", "compose", "world_tf_tree"]
+
 
 class RobotState(Protocol):
     """What the tree reads from the world (``DoorWorld`` has both)."""

@@ -11,6 +11,8 @@ import xml.etree.ElementTree as ET
 
 from door_sim_bridge.errors import SimulationError
 
+__all__ = ["joint_link", "required_attribute", "required_child"]
+
 
 def required_child(element: ET.Element, tag: str) -> ET.Element:
     """The first ``<tag>`` child of ``element``; SimulationError if it has none."""

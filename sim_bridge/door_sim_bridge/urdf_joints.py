@@ -20,6 +20,8 @@ from scipy.spatial.transform import Rotation
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.urdf_elements import required_child
 
+__all__ = ["UrdfJoint", "joint_transforms", "root_link", "urdf_joints"]
+
 ROTATING = frozenset({"revolute", "continuous"})
 SLIDING = frozenset({"prismatic"})
 

@@ -10,6 +10,9 @@ import math
 
 from door_contract.ranges import FieldRange
 
+__all__ = ["CAMERA_RANGES", "COLOUR_COMPONENT", "COLOUR_FIELDS", "DIRECTION_COMPONENT", "DOOR_RANGES",
+           "EXECUTION_RANGES", "FALL_RANGES", "POSTURE_OVERRIDE", "STANCE_RANGES", "WIND_RANGES", "WORLD_RANGES"]
+
 COLOUR_COMPONENT = FieldRange(0.0, 1.0, "")
 """Each of a colour's red, green and blue."""
 

@@ -17,7 +17,8 @@ from door_contract.stamps import stamp_ns
 from door_contract.topics import Topics
 from door_robot.meshes import PACKAGE_URI, resolve_package_uri
 from door_robot.profile import load_profile
-from door_sim_bridge.tf_tree import compose, urdf_joints
+from door_sim_bridge.tf_tree import compose
+from door_sim_bridge.urdf_joints import urdf_joints
 
 pytestmark = pytest.mark.ros
 

@@ -20,6 +20,8 @@ from enum import Enum
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus
 from door_sim_bridge.world.world import DoorWorld, EventKind, SimEvent
 
+__all__ = ["Execution", "ExecutionPhase", "ExecutionResult"]
+
 
 @dataclass(frozen=True)
 class ExecutionResult:

@@ -43,6 +43,9 @@ from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution.base import Execution
 from door_sim_bridge.world.world import DoorWorld
 
+__all__ = ["STILL_RADIUS", "STILL_TIME", "STILL_TIMEOUT", "FootstepExecution", "blend_poses", "relative_step",
+           "smooth_blend", "validate_footsteps", "wrap_angle"]
+
 LIMIT_TOLERANCE = 0.005  # m or rad: planners round to their grids; a few mm more is still a safe step
 LANDING_TOLERANCE = 0.05  # m: a physical walk ending farther than this from its plan is a FAILURE
 STILL_RADIUS = 0.01  # m: the base counts as at rest while it stays this close to where it was ...

@@ -45,6 +45,8 @@ from door_sim_bridge.world.config import ExecutionConfig
 from door_sim_bridge.world.robot import JointLimit
 from door_sim_bridge.world.world import DoorWorld
 
+__all__ = ["TrajectoryExecution", "validate_trajectory", "with_start_point"]
+
 LIMIT_TOLERANCE = 1e-6  # rad
 YIELD_EFFORT = 0.98  # × the motor's force: an arm joint pushing back this hard has yielded to the door
 

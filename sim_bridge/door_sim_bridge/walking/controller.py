@@ -41,6 +41,9 @@ from door_sim_bridge.walking.gait import GaitOptions, footstep_sequence, placo_p
 from door_sim_bridge.walking.model import PLACO_TRUNK_FRAME, joint_split, load_placo_robot
 from door_sim_bridge.walking.stabilizer import ContactWrench, Stabilizer, StabilizerOptions
 
+__all__ = ["BalanceMode", "Measurement", "WalkingController", "level_frame", "mean_yaw", "supports_from",
+           "yaw_rotation"]
+
 FOOT_OF_SIDE = {Side.LEFT: Foot.LEFT, Side.RIGHT: Foot.RIGHT}
 
 

@@ -24,6 +24,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+__all__ = ["CentreOfMassMotion", "DcmFeedback"]
+
 
 @dataclass(frozen=True, eq=False)
 class CentreOfMassMotion:

@@ -22,6 +22,8 @@ from door_contract.converters.footsteps import FootPlacement
 from door_contract.vocabulary import Foot
 from door_sim_bridge.validation import FieldRange, check_ranges
 
+__all__ = ["GaitOptions", "footstep_sequence", "is_in_place", "placo_parameters", "planar_frame"]
+
 SIDE_OF_FOOT = {Foot.LEFT: placo.HumanoidRobot_Side.left, Foot.RIGHT: placo.HumanoidRobot_Side.right}
 
 

@@ -27,6 +27,8 @@ from door_robot.profile import RobotProfile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.urdf_elements import joint_link, required_attribute, required_child
 
+__all__ = ["PLACO_TRUNK_FRAME", "JointSplit", "joint_split", "load_placo_robot", "placo_urdf_text"]
+
 PLACO_FOOT_FRAMES = {Side.LEFT: "left_foot", Side.RIGHT: "right_foot"}
 PLACO_TRUNK_FRAME = "trunk"
 MOVABLE = ("revolute", "prismatic", "continuous")

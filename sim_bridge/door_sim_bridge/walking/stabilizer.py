@@ -47,6 +47,8 @@ import numpy as np
 
 from door_sim_bridge.validation import FieldRange, check_ranges
 
+__all__ = ["ContactWrench", "Stabilizer", "StabilizerOptions", "beyond", "clipped", "feed_forward_offset"]
+
 
 @dataclass(frozen=True)
 class StabilizerOptions:

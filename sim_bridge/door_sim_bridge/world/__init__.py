@@ -25,7 +25,7 @@ from door_sim_bridge.world.hardware import SoleContact
 from door_sim_bridge.world.robot import JointLimit, JointStates
 from door_sim_bridge.world.world import DoorWorld, EventKind, SimEvent
 
-__all__ = ["HANDLE_JOINT", "HINGE_JOINT", "CameraConfig", "CameraFrame", "ContactSolver", "DoorConfig", "DoorGroundTruth",
-           "DoorPart", "DoorState", "DoorWorld", "EventKind", "ExecutionConfig",
-           "GraspModel", "GraspResult", "JointLimit", "RobotMode", "JointStates", "RobotVisuals", "SimEvent", "SoleContact",
+__all__ = ["HANDLE_JOINT", "HINGE_JOINT", "CameraConfig", "CameraFrame", "ContactSolver", "DoorConfig",
+           "DoorGroundTruth", "DoorPart", "DoorState", "DoorWorld", "EventKind", "ExecutionConfig", "GraspModel",
+           "GraspResult", "JointLimit", "JointStates", "RobotMode", "RobotVisuals", "SimEvent", "SoleContact",
            "StanceConfig", "WindConfig", "WorldConfig"]

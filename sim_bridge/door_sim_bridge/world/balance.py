@@ -26,6 +26,8 @@ from door_sim_bridge.world.hardware import (
 )
 from door_sim_bridge.world.robot import SimRobot
 
+__all__ = ["BalanceLoop"]
+
 FOOT_OF_SIDE = {Side.LEFT: Foot.LEFT, Side.RIGHT: Foot.RIGHT}
 
 

@@ -46,6 +46,8 @@ from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import CameraConfig
 from door_sim_bridge.world.robot import SimRobot
 
+__all__ = ["CameraFrame", "HeadCamera", "intrinsics_of", "metric_depth", "optical_offset"]
+
 OPTICAL_TO_OPENGL = np.diag([1.0, -1.0, -1.0, 1.0])
 """The OpenGL camera frame in the optical frame (rotation by pi about x)."""
 

@@ -13,6 +13,8 @@ from typing import Any
 
 import pybullet
 
+__all__ = ["PhysicsClient"]
+
 
 class PhysicsClient:
     """One headless PyBullet physics server (DIRECT mode: no window, no GPU)."""

@@ -35,6 +35,9 @@ from door_sim_bridge.world_ranges import (
     WORLD_RANGES,
 )
 
+__all__ = ["CameraConfig", "Colour", "ContactSolver", "Direction", "DoorConfig", "ExecutionConfig", "FallConfig",
+           "GraspModel", "RobotMode", "RobotVisuals", "StanceConfig", "WindConfig", "WorldConfig"]
+
 Colour = tuple[float, float, float]
 """RGB in [0, 1]."""
 

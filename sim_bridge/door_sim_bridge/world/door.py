@@ -39,6 +39,9 @@ from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import DoorConfig, WindConfig
 from door_sim_bridge.world.transforms import pose_matrix
 
+__all__ = ["HANDLE_JOINT", "HINGE_JOINT", "LEVER_SECTION", "DoorGroundTruth", "DoorLayout", "DoorPart", "DoorState",
+           "LatchEvent", "SimDoor", "door_urdf", "handle_torque", "hinge_torque", "wind_torque"]
+
 WALL_THICKNESS = 0.12  # m
 WALL_HALF_WIDTH = 3.0  # m
 WALL_HEIGHT = 2.6  # m, at least; taller doors get a taller wall

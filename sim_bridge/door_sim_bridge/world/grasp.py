@@ -28,6 +28,8 @@ from door_sim_bridge.world.door import DoorPart, SimDoor
 from door_sim_bridge.world.robot import SimRobot
 from door_sim_bridge.world.transforms import invert, position_quaternion
 
+__all__ = ["GraspController", "GraspResult"]
+
 SOLVER_FORCE_MARGIN = 5.0
 """The constraint's own force cap, × the break force, so the solver never saturates first."""
 

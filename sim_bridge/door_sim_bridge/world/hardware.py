@@ -27,6 +27,9 @@ from door_sim_bridge.walking.stabilizer import ContactWrench
 from door_sim_bridge.world.client import PhysicsClient
 from door_sim_bridge.world.config import FallConfig
 
+__all__ = ["SoleContact", "centre_of_mass_motion", "centre_of_pressure", "contact_forces", "fall_reason", "floor_links",
+           "make_floor", "net_wrench", "sole_contact", "tilt"]
+
 MIN_SUPPORT_FORCE = 1.0  # N of floor contact below which the robot is in the air
 
 

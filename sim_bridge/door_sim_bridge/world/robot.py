@@ -35,6 +35,8 @@ from door_sim_bridge.world.config import RobotVisuals
 from door_sim_bridge.world.robot_urdf import box_sole_urdf, profile_urdf
 from door_sim_bridge.world.transforms import invert, pose_matrix, position_quaternion, translation
 
+__all__ = ["JointLimit", "JointStates", "SimRobot"]
+
 MOVABLE_JOINT_TYPES = (pybullet.JOINT_REVOLUTE, pybullet.JOINT_PRISMATIC)
 MIN_MOTOR_FORCE = 5.0  # N·m, so weak URDF efforts (wrist: 3 N·m) still hold the hand's weight
 

@@ -31,6 +31,9 @@ from door_sim_bridge.urdf_elements import joint_link, required_child
 if TYPE_CHECKING:  # world.robot imports this module (for the URDF it loads)
     from door_sim_bridge.world.robot import SimRobot
 
+__all__ = ["SolePlacement", "add_extra_frames", "box_sole_urdf", "give_frames_negligible_mass", "profile_urdf",
+           "resolve_mesh", "sole_placement", "sole_placement_link"]
+
 SOLE_THICKNESS = 0.02  # m
 # kg·m², least moment of inertia of a sole link about each of its axes. The foot stands in
 # for what PyBullet's joints lack: the ankle rotors' reflected inertia (armature). With its

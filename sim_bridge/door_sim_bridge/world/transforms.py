@@ -7,6 +7,8 @@ from collections.abc import Sequence
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+__all__ = ["invert", "is_rigid", "pose_matrix", "position_quaternion", "translation"]
+
 
 def pose_matrix(position: Sequence[float], quaternion: Sequence[float]) -> np.ndarray:
     """4×4 transform of a PyBullet position and unit (x, y, z, w) quaternion.

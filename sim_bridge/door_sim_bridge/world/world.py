@@ -48,6 +48,8 @@ from door_sim_bridge.world.robot import JointLimit, JointStates, SimRobot
 from door_sim_bridge.world.robot_urdf import sole_placement_link
 from door_sim_bridge.world.transforms import invert, is_rigid
 
+__all__ = ["LEAF_CLOSED", "DoorWorld", "EventKind", "SimEvent", "stance_midpoint"]
+
 SOLE_CLEARANCE = 0.0005  # m between the lowest sole and the floor when the robot is placed
 LEAF_CLOSED = 0.03  # rad; a leaf nearer its frame than this holds a hand only through its lever
 SOLVER_TYPES = {ContactSolver.DANTZIG: pybullet.CONSTRAINT_SOLVER_LCP_DANTZIG,
