@@ -38,6 +38,9 @@ from footstep_planner.geometry import (
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.progress import StepEffects
 
+__all__ = ["CLEARANCE_STEP", "CLOSING_STEP", "ActionSet", "ActionTable", "StepAction", "candidate_actions",
+           "cleared_turn", "is_kinematically_valid", "is_reachable_step"]
+
 
 @dataclass(frozen=True)
 class StepAction:

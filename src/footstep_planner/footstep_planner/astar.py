@@ -53,6 +53,8 @@ from footstep_planner.reachability import CELL_SIZE, ReachabilityQuery, may_reac
 from footstep_planner.search import Search, SearchRequest
 from footstep_planner.world import World
 
+__all__ = ["FootstepPlanner", "plan_footsteps"]
+
 
 class FootstepPlanner:
     """Plans footsteps in one world with one set of options (both fixed at construction)."""

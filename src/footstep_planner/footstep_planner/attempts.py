@@ -25,6 +25,8 @@ from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.options import FootstepPlannerOptions, option_range
 from footstep_planner.validation import FieldRange, check_range
 
+__all__ = ["MAX_ATTEMPT", "options_for_attempt"]
+
 MAX_ATTEMPT = 20
 """Highest attempt number accepted."""
 

@@ -15,6 +15,8 @@ import numpy as np
 from footstep_planner.geometry import Bounds
 from footstep_planner.options import FootstepPlannerOptions
 
+__all__ = ["ClosedSetGrid"]
+
 
 @dataclass(frozen=True)
 class ClosedSetGrid:

@@ -26,6 +26,8 @@ from footstep_planner.geometry import wrap_angle
 from footstep_planner.obstacles import Obstacle, Point
 from footstep_planner.validation import FieldRange, check_range
 
+__all__ = ["DoorGeometry", "door_obstacles", "leaf_obstacle", "sweep_obstacle", "wall_obstacles"]
+
 _SWEEP_ARC_STEP = 0.3
 """Angular spacing of the polygon that over-approximates the leaf's swept arc (rad)."""
 

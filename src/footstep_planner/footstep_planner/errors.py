@@ -13,6 +13,8 @@ bug must instead end as a FAILURE ("internal error").
 
 from __future__ import annotations
 
+__all__ = ["FootstepPlannerError", "RequestRefused"]
+
 
 class FootstepPlannerError(Exception):
     """A value given to the footstep planner core is invalid.

@@ -19,6 +19,8 @@ from footstep_planner.geometry import BoolArray, FloatArray
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.world import World
 
+__all__ = ["FootprintChecker", "body_box_centre"]
+
 
 @dataclass(frozen=True)
 class FootprintChecker:

@@ -16,6 +16,8 @@ from door_contract.vocabulary import Foot
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.geometry import FloatArray, rectangle_corners, wrap_angle
 
+__all__ = ["Footstep", "Pose2D", "Stance", "foot_corners"]
+
 
 @dataclass(frozen=True)
 class Pose2D:

@@ -13,6 +13,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+__all__ = ["BoolArray", "Bounds", "FloatArray", "PackedPolygons", "convex_hull", "edge_normals", "interior_angles",
+           "rectangle_axes", "rectangle_corners", "rectangles_overlap_polygons", "rectangles_touch_any", "wrap_angle",
+           "wrap_angles"]
+
 FloatArray = NDArray[np.floating[Any]]
 BoolArray = NDArray[np.bool_]
 

@@ -16,6 +16,10 @@ from footstep_planner.geometry import wrap_angle
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.validation import FieldRange, check_range
 
+__all__ = ["DEFAULT_BEYOND_LATCH", "DEFAULT_HANDLE_OFFSET", "DEFAULT_PULL_SWEEP_ANGLE", "DEFAULT_REACH",
+           "DEFAULT_SWEEP_CLEARANCE", "PUSH_LINE_CLEARANCE", "pull_passage_waypoints", "push_line", "push_stand_pose",
+           "replan_needed", "stand_pose_for_opening", "through_door_pose", "towards_latch"]
+
 DEFAULT_REACH = 0.50
 """Distance from the door plane to the robot base when opening (m); 0.45-0.55 suits TALOS."""
 DEFAULT_HANDLE_OFFSET = 0.20

@@ -53,6 +53,8 @@ from footstep_planner.geometry import FloatArray, wrap_angles
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.progress import ProgressTable
 
+__all__ = ["FootstepHeuristic", "is_goal_centre"]
+
 
 @dataclass(frozen=True)
 class FootstepHeuristic:

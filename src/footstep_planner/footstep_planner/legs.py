@@ -18,6 +18,8 @@ from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.plan import FootstepPlan, PlanOutcome, PlanResult
 from footstep_planner.pruning import LegPruning
 
+__all__ = ["Leg", "plan_legs"]
+
 
 @dataclass(frozen=True)
 class Leg:

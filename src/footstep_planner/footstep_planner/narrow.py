@@ -46,6 +46,8 @@ from footstep_planner.legs import Leg
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.pruning import LegPruning
 
+__all__ = ["PASSAGE_CLEARANCE", "SIDEWAYS", "PullPassage", "hold_leaf_line", "passage_legs", "passage_turn"]
+
 
 class PullPassage(Enum):
     """How the robot passes a pull door that its other hand blocks."""

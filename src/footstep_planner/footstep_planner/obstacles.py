@@ -10,6 +10,8 @@ import numpy as np
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.geometry import FloatArray, convex_hull, rectangle_corners
 
+__all__ = ["Obstacle", "Point"]
+
 Point = tuple[float, float]
 
 

@@ -14,6 +14,8 @@ from dataclasses import dataclass, fields
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.validation import FieldRange, check_range
 
+__all__ = ["FootstepPlannerOptions", "option_range"]
+
 
 @dataclass(frozen=True)
 class FootstepPlannerOptions:

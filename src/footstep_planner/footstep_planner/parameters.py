@@ -9,6 +9,8 @@ from door_contract.parameters import ParameterSpec
 from door_contract.ranges import FieldRange
 from footstep_planner.options import option_range
 
+__all__ = ["NODE_NAME", "PLANNER_PARAMETERS"]
+
 NODE_NAME = "footstep_planner"
 
 PLANNER_PARAMETERS = (

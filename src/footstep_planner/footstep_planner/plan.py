@@ -8,6 +8,8 @@ from enum import Enum
 
 from footstep_planner.footstep import Footstep, Pose2D, Stance
 
+__all__ = ["FootstepPlan", "InputProblem", "PlanOutcome", "PlanResult", "failed"]
+
 
 class PlanOutcome(Enum):
     """How a planning request ended."""

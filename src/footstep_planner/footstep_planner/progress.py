@@ -60,6 +60,8 @@ import numpy as np
 from door_contract.vocabulary import Foot
 from footstep_planner.geometry import FloatArray, wrap_angles
 
+__all__ = ["ProgressTable", "StepEffects"]
+
 TABLE_STEPS = 48
 """M: steps tabulated (a 2 m sideways leg takes about 36)."""
 

@@ -8,7 +8,7 @@ door took 25,000 expansions. A leg that knows the shape of its solution says so:
 
 * ``yaw_window`` W: every placed foot's yaw stays within W of the goal's yaw, so the
   search never turns away (and its heuristic is built for that window, see
-  :class:`~footstep_planner.heuristic.ProgressTable`);
+  :class:`~footstep_planner.progress.ProgressTable`);
 * ``corridor`` r: every stance centre c(F') stays within r of the line through the
   start's body position and the goal, so the search never wanders across the doorway.
   The body checks at the midpoints between such centres lie in the corridor too (it is
@@ -29,6 +29,8 @@ import numpy as np
 from footstep_planner.footstep import Pose2D
 from footstep_planner.geometry import BoolArray, FloatArray, wrap_angles
 from footstep_planner.validation import FieldRange, check_range
+
+__all__ = ["LegPruning"]
 
 
 @dataclass(frozen=True)

@@ -27,6 +27,8 @@ import numpy as np
 from footstep_planner.geometry import BoolArray, Bounds
 from footstep_planner.world import World
 
+__all__ = ["CELL_SIZE", "ReachabilityQuery", "flood_fill", "may_reach"]
+
 CELL_SIZE = 0.05
 """Grid cell of the reachability check (m)."""
 MAX_CELLS = 1_000_000

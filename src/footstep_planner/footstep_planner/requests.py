@@ -34,9 +34,9 @@ from footstep_planner.push_passage import PushPassage, push_passage_legs
 from footstep_planner.robot_limits import options_for_walking, planner_options
 from footstep_planner.world import World
 
-__all__ = ["GoalSettings", "Snapshot", "WalkProblem", "door_geometry_from_estimate", "options_for_problem",
-           "options_for_walking", "passage_angle", "planner_options", "problem_for_request", "stand_pose",
-           "snapshot_stance", "start_stance", "walk_problem", "WalkPlanners"]
+__all__ = ["GoalSettings", "Snapshot", "WalkPlanners", "WalkProblem", "door_geometry_from_estimate",
+           "options_for_problem", "options_for_walking", "passage_angle", "planner_options", "problem_for_request",
+           "snapshot_stance", "stand_pose", "start_stance", "walk_problem"]
 
 PLANNED_STANCE_TOLERANCE = (0.03, 0.05)
 """The base within (m, rad) of where the last plan left it: that plan was walked."""

@@ -13,6 +13,8 @@ from typing import Any
 from door_robot.profile import WalkingLimits, load_profile
 from footstep_planner.options import FootstepPlannerOptions
 
+__all__ = ["STEP_LIMIT_MARGIN", "options_for_walking", "planner_options"]
+
 STEP_LIMIT_MARGIN = 0.95
 """Plan within 95 % of the robot's stride, side step and turn: the robot checks its own."""
 MIN_FOOT_SEPARATION = 0.16

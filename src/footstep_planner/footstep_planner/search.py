@@ -34,6 +34,8 @@ from footstep_planner.snapping import snapping_steps
 if TYPE_CHECKING:
     from footstep_planner.astar import FootstepPlanner
 
+__all__ = ["Search", "SearchRequest"]
+
 _COST_EPSILON = 1e-9
 """A path must be cheaper by more than this to replace the best one known to a cell."""
 _NEAR_CELL = 0.25

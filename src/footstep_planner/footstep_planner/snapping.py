@@ -8,6 +8,8 @@ from footstep_planner.footprint import FootprintChecker
 from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.options import FootstepPlannerOptions
 
+__all__ = ["snapping_steps"]
+
 
 def snapping_steps(last: Footstep, goal: Pose2D, options: FootstepPlannerOptions,
                    checker: FootprintChecker) -> tuple[Footstep, ...]:

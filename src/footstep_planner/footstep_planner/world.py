@@ -23,6 +23,8 @@ from footstep_planner.obstacles import Obstacle
 if TYPE_CHECKING:
     from footstep_planner.door import DoorGeometry
 
+__all__ = ["BoundingRectangles", "World"]
+
 
 @dataclass(frozen=True, eq=False)
 class BoundingRectangles:
