@@ -27,6 +27,8 @@ from scipy.linalg import cho_factor, cho_solve, cho_solve_banded, cholesky_bande
 
 from door_trajopt.problem import FloatArray
 
+__all__ = ["DofGroup", "KroneckerBandedCholesky", "LowRankUpdatedMetric", "MetricSolver"]
+
 
 class MetricSolver(Protocol):
     """Anything that applies the inverse of CHOMP's metric to vectors/matrices."""

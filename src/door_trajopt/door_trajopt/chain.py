@@ -14,6 +14,8 @@ import numpy as np
 from door_contract.vocabulary import Side
 from door_robot.kinematics import RobotKinematics
 
+__all__ = ["ArmChain"]
+
 
 @dataclass
 class ArmChain:

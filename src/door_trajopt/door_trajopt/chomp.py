@@ -59,6 +59,9 @@ from door_trajopt.problem import FloatArray, TrajectoryProblem
 from door_trajopt.result import OptimizationResult
 from door_trajopt.validation import FieldRange, at_least, check_ranges
 
+__all__ = ["ActiveSystem", "ChompOptions", "ChompSolver", "ConstrainedStep", "IntArray", "WorkingSet",
+           "robust_cholesky", "solve_chomp", "unit_rows"]
+
 IntArray = npt.NDArray[np.int64]
 REGULARISATIONS = (0.0, 1e-12, 1e-9, 1e-6)
 """Relative diagonal shifts tried when ``S = H M^{-1} H^T`` is (near) singular."""

@@ -24,6 +24,9 @@ from door_trajopt.problem import (
     TrajoptError,
 )
 
+__all__ = ["ConstraintStack", "NonFiniteValueError", "Violation", "checked_values", "free_jacobian", "free_pattern",
+           "joint_limit_violation", "worst_violation"]
+
 JOINT_LIMITS_NAME = "joint_limits"
 """Name reported when the worst violation is a joint limit."""
 

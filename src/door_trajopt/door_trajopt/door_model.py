@@ -20,6 +20,9 @@ import pinocchio as pin
 
 from door_contract.payloads import DoorEstimate
 
+__all__ = ["UP", "DoorModel", "cross_matrix", "door_model_from_estimate", "rotation_about", "rotation_about_up",
+           "rotation_vector"]
+
 UP = np.array([0.0, 0.0, 1.0])
 
 

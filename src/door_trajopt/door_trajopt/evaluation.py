@@ -28,6 +28,8 @@ from door_trajopt.objective import Objective
 from door_trajopt.problem import ConstraintKind, FloatArray, TrajectoryProblem
 from door_trajopt.result import OptimizationResult, Outcome, invalid_guess_reason, invalid_input_result
 
+__all__ = ["BackendSolver", "PointModel", "PointValues", "ProblemEvaluator", "RunSummary", "build_result"]
+
 OptionsT = TypeVar("OptionsT")
 
 

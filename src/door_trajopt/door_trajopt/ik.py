@@ -28,6 +28,8 @@ from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import rotation_vector
 from door_trajopt.problem import TrajoptError
 
+__all__ = ["IkOptions", "IkResult", "pose_error", "solve_ik", "solve_ik_multistart"]
+
 
 @dataclass(frozen=True)
 class IkOptions:

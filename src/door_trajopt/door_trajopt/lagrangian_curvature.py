@@ -38,6 +38,8 @@ import scipy.sparse as sp
 
 from door_trajopt.problem import FloatArray
 
+__all__ = ["BlockCurvature", "block_pattern"]
+
 SMALLEST_STEP = 1e-12
 """Blocks whose step is shorter than this (rad, m) are left as they are."""
 

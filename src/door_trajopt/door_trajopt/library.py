@@ -36,6 +36,8 @@ from door_trajopt.result import OptimizationResult, Outcome
 from door_trajopt.sqp import SqpOptions, SqpSolver
 from door_trajopt.timing import time_parameterise
 
+__all__ = ["MotionLibrary", "MotionPlan"]
+
 MAX_ATTEMPT_SCALE = 4  # a repeat gets at most this many times the first attempt's iterations
 
 

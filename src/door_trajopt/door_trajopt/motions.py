@@ -41,6 +41,10 @@ from door_trajopt.problem import (
 from door_trajopt.validation import check_ranges
 from door_trajopt.waypoint_constraints import WaypointFunction, WaypointValue, fixed_dof, waypoint_constraint
 
+__all__ = ["HANDLE_RANGE", "HINGE_RANGE", "DoorStateOutOfRange", "ExtraConstraints", "MotionOptions", "MotionProblem",
+           "MotionSetup", "WallRelaxation", "anchored_to_hand", "build_motion", "check_start_door", "minimum_duration",
+           "option_range", "start_door_for", "support_polygon"]
+
 FULL_MASK = np.ones(6)
 POSITION_MASK = np.array([1.0, 1.0, 1.0, 0.0, 0.0, 0.0])
 ROTATION_MASK = np.array([0.0, 0.0, 0.0, 1.0, 1.0, 1.0])

@@ -24,6 +24,8 @@ from door_trajopt.constraints import checked_values, free_jacobian, free_pattern
 from door_trajopt.problem import FloatArray, ResidualCost, TrajectoryProblem
 from door_trajopt.smoothness import SmoothnessMetric
 
+__all__ = ["Objective", "ResidualModel"]
+
 
 @dataclass(frozen=True)
 class ResidualModel:

@@ -11,6 +11,8 @@ from door_contract.ranges import FieldRange
 from door_trajopt.library import MotionLibrary
 from door_trajopt.motions import MotionOptions, option_range
 
+__all__ = ["NODE_NAME", "OPTIMIZER_PARAMETERS"]
+
 NODE_NAME = "trajectory_optimizer"
 LIBRARY_DEFAULTS = MotionOptions()
 

@@ -48,6 +48,10 @@ import numpy as np
 import numpy.typing as npt
 import scipy.sparse as sp
 
+__all__ = ["START_TOLERANCE", "Constraint", "ConstraintKind", "Derivative", "FloatArray", "JacobianValue",
+           "JointLimits", "PostureCost", "ResidualCost", "SmoothnessSpec", "TrajectoryFunction", "TrajectoryJacobian",
+           "TrajectoryProblem", "TrajoptError", "as_float_vector"]
+
 FloatArray: TypeAlias = npt.NDArray[np.float64]
 JacobianValue: TypeAlias = "FloatArray | sp.spmatrix | sp.sparray"
 

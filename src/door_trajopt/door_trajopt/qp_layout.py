@@ -43,6 +43,8 @@ import scipy.sparse as sp
 
 from door_trajopt.problem import FloatArray, TrajoptError
 
+__all__ = ["IntArray", "QpLayout", "SparsityPattern", "assemble_coo", "csc_permutation"]
+
 IntArray = npt.NDArray[np.int64]
 
 

@@ -30,7 +30,8 @@ from door_trajopt.library import MotionPlan
 from door_trajopt.motions import MotionOptions, MotionSetup, start_door_for, support_polygon
 from door_trajopt.problem import TrajoptError
 
-__all__ = ["MotionJob", "PlanningRefused", "Snapshot", "motion_figures", "motion_job", "planning_outcome"]
+__all__ = ["MotionJob", "PlanningRefused", "Snapshot", "grasping_hand", "motion_figures", "motion_job",
+           "planning_outcome"]
 
 
 class PlanningRefused(TrajoptError):

@@ -9,6 +9,8 @@ import numpy as np
 
 from door_trajopt.problem import START_TOLERANCE, FloatArray, TrajectoryProblem
 
+__all__ = ["OptimizationResult", "Outcome", "invalid_guess_reason", "invalid_input_result"]
+
 
 class Outcome(enum.Enum):
     """How an optimisation ended."""

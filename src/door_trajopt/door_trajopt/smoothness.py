@@ -47,6 +47,8 @@ import scipy.sparse.linalg as spla
 
 from door_trajopt.problem import Derivative, FloatArray, TrajectoryProblem
 
+__all__ = ["SmoothnessMetric", "finite_difference_rows", "upper_banded"]
+
 
 def finite_difference_rows(
     n_waypoints: int, derivative: Derivative, at_rest: bool

@@ -64,6 +64,9 @@ from door_trajopt.qp_layout import QpLayout
 from door_trajopt.result import OptimizationResult
 from door_trajopt.validation import FieldRange, at_least, check_ranges
 
+__all__ = ["ConstraintHandling", "ConstraintShift", "ConvexModel", "QpStep", "SqpOptions", "SqpSolver", "SqpState",
+           "StepOutcome", "raise_field", "solve_sqp"]
+
 SOLVED_STATUSES = (
     osqp.SolverStatus.OSQP_SOLVED,
     osqp.SolverStatus.OSQP_SOLVED_INACCURATE,

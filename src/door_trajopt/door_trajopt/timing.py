@@ -13,6 +13,8 @@ import numpy as np
 
 from door_contract.converters.trajectory import JointPath
 
+__all__ = ["time_parameterise"]
+
 
 def time_parameterise(positions: np.ndarray, joint_names: tuple[str, ...], velocity_limits: np.ndarray,
                       acceleration_limit: float = 2.0, minimum_step: float = 0.05,

@@ -48,6 +48,8 @@ from door_trajopt.parameters import NODE_NAME, OPTIMIZER_PARAMETERS
 from door_trajopt.problem import TrajoptError
 from door_trajopt.requests import PlanningRefused, Snapshot, motion_job, planning_outcome
 
+__all__ = ["TrajectoryOptimizerNode", "main"]
+
 BAD_INPUT = (PlanningRefused, RobotModelError, ContractError, DoorStateOutOfRange)
 """What a request's planning raises for bad input (answered REJECTED); anything else (any other
 :class:`~door_trajopt.problem.TrajoptError`, of a built problem, included) is a bug (FAILURE)."""

@@ -16,6 +16,8 @@ import scipy.sparse as sp
 
 from door_trajopt.problem import Constraint, ConstraintKind, TrajectoryFunction, TrajectoryJacobian, TrajoptError
 
+__all__ = ["WaypointFunction", "WaypointValue", "fixed_dof", "waypoint_constraint"]
+
 WaypointValue = tuple[np.ndarray, np.ndarray | None]
 """What a waypoint function returns: (value, jacobian or None when not needed)."""
 WaypointFunction = Callable[[np.ndarray, bool], WaypointValue]
