@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from door_contract.vocabulary import Side
+from door_contract.vocabulary import DetectionMode, Side
 from door_detection.errors import DetectionError
-from door_detection.estimate import DetectedDoor, DetectionMode
+from door_detection.estimate import DetectedDoor
 from door_detection.options import DetectionOptions
 
 

@@ -46,6 +46,8 @@ from door_detection.options import DetectionOptions
 from door_detection.plane import refine_plane
 from door_detection.preprocessing import DepthError, RgbdFrame, validate_frame
 
+__all__ = ["UNEXPECTED_ERRORS", "StageClock", "StageFailure", "detect_automatic"]
+
 UNEXPECTED_ERRORS = (DetectionError, ArithmeticError, IndexError, ValueError, np.linalg.LinAlgError, cv2.error)
 """Failures inside the pipeline that no input check foresaw: reported (INTERNAL_ERROR), never
 raised. Caught after :class:`InputError` (bad input); a :class:`DetectionError` that gets this

@@ -55,6 +55,8 @@ from door_robot.errors import RobotModelError
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 
+__all__ = ["DoorDetectorNode", "main"]
+
 
 class DoorDetectorNode(Node):
     def __init__(self) -> None:

@@ -32,6 +32,9 @@ from door_detection.lines import VerticalLines
 from door_detection.options import DetectionOptions
 from door_detection.plane import Line3D, Plane, depth_noise, pixel_rays, ransac_line, sample_depth
 
+__all__ = ["DoorCandidate", "corners_3d", "door_surface_points", "find_doors", "frame_pairs", "merge_duplicates",
+           "pair_lines"]
+
 INSIDE_RIGHT = 1
 """Sample to the right of a line: the line is a door's left edge."""
 INSIDE_LEFT = -1

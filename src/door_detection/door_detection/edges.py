@@ -25,6 +25,8 @@ import numpy as np
 
 from door_detection.lines import VerticalLines
 
+__all__ = ["edge_width", "refine_door_edges", "refine_edge"]
+
 PROFILE_INSIDE = 4
 """Pixels of the profile on the leaf side of the Hough line."""
 PROFILE_OUTSIDE = 4

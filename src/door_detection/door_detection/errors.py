@@ -6,6 +6,8 @@
 ``ValueError`` raised inside the pipeline is a bug, reported as INTERNAL_ERROR.
 """
 
+__all__ = ["DetectionError", "InputError"]
+
 
 class DetectionError(Exception):
     """An option out of range, or a misuse of the detector; the message names the field."""

@@ -17,6 +17,8 @@ from door_contract.ranges import FieldRange, check_fields
 from door_contract.vocabulary import DetectionMode, Side
 from door_detection.errors import DetectionError
 
+__all__ = ["DetectedDoor", "DetectionOutcome", "DetectionResult", "FloatArray"]
+
 FloatArray = np.ndarray
 """A float64 numpy array (shape given in each docstring)."""
 

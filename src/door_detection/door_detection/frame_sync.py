@@ -15,7 +15,7 @@ from typing import Any
 
 from door_detection.errors import DetectionError
 
-__all__ = ["STREAM_NAMES", "STREAMS", "DroppedFrame", "FrameSync"]
+__all__ = ["STREAMS", "STREAM_NAMES", "DroppedFrame", "FrameSync"]
 
 STREAMS = ("color", "depth", "info", "pose")
 """The streams of a frame, by the names :class:`FrameSync` keys them with."""

@@ -34,6 +34,8 @@ from door_contract.vocabulary import Side
 from door_detection.options import DetectionOptions
 from door_detection.plane import Plane, pixel_rays, sample_depth
 
+__all__ = ["DoorAxes", "fused_standoff", "locate_grasp"]
+
 
 @dataclass(frozen=True)
 class DoorAxes:

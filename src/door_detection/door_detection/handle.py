@@ -25,6 +25,9 @@ import numpy as np
 from door_contract.vocabulary import Side
 from door_detection.options import DetectionOptions
 
+__all__ = ["ColourStats", "HandleBlob", "colour_stats", "find_handle", "grow_blob", "robust_colour_stats",
+           "touches_border"]
+
 HANDLE_GROW_SIGMAS = 2.5
 """A pixel joins a handle blob within this many of the blob's own σ (its faces are shaded
 differently, so the door's 1σ would be too strict)."""

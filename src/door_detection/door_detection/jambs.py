@@ -29,6 +29,8 @@ from door_detection.door_pairs import DoorCandidate
 from door_detection.lines import VerticalLines
 from door_detection.plane import Plane, pixel_rays
 
+__all__ = ["trim_jambs"]
+
 JAMB_STEP = 0.005
 """Spacing of the candidate jamb widths (m)."""
 JAMB_MIN_WIDTH = 0.02

@@ -18,6 +18,8 @@ from scipy.sparse.csgraph import connected_components
 from door_detection.options import DetectionOptions
 from door_detection.preprocessing import edge_image
 
+__all__ = ["VerticalLines", "detect_vertical_lines", "merge_collinear"]
+
 
 @dataclass(frozen=True)
 class VerticalLines:

@@ -8,6 +8,8 @@ from visualization_msgs.msg import Marker, MarkerArray
 from door_contract.frames import Frame
 from door_contract.payloads import DoorEstimate
 
+__all__ = ["door_markers"]
+
 
 def _marker(kind: int, marker_id: int, rgba: tuple[float, float, float, float]) -> Marker:
     marker = Marker(type=kind, action=Marker.ADD, id=marker_id, ns="door")

@@ -25,6 +25,8 @@ from door_detection.view_search import Neck, NeckAxis
 if TYPE_CHECKING:  # Pinocchio is imported only by the caller that builds the kinematics
     from door_robot.kinematics import RobotKinematics
 
+__all__ = ["neck_of"]
+
 AXIS_TOLERANCE_DEG = 15.0
 """Largest angle between a neck joint's axis and the base's z (pan) or y (tilt)."""
 

@@ -44,6 +44,8 @@ from door_detection.options import DetectionOptions
 from door_detection.plane import Plane, refine_plane, sample_depth
 from door_detection.preprocessing import DepthError, RgbdFrame, validate_frame
 
+__all__ = ["detect_from_scribble"]
+
 NO_CORNERS = np.full((4, 3), np.nan)
 PROUD_OF_DOOR = 0.025
 """A handle pixel stands at least this far in front of the door plane (m); the frame and

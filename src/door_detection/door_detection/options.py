@@ -14,6 +14,8 @@ from dataclasses import dataclass, fields
 from door_contract.ranges import FieldRange, check_in_range
 from door_detection.errors import DetectionError
 
+__all__ = ["DetectionOptions", "option_range"]
+
 
 def _ranges() -> dict[str, FieldRange]:
     """Interval of every option (a function, so no module-level mutable state)."""

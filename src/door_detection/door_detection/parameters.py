@@ -10,6 +10,8 @@ from door_contract.ranges import FieldRange
 from door_detection.options import option_range
 from door_detection.view_search import option_range as view_range
 
+__all__ = ["DETECTOR_PARAMETERS", "NODE_NAME"]
+
 NODE_NAME = "door_detector"
 
 DETECTOR_PARAMETERS = (

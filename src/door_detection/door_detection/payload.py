@@ -16,6 +16,8 @@ from door_contract.payloads import DoorEstimate
 from door_contract.vocabulary import Side
 from door_detection.estimate import DetectedDoor
 
+__all__ = ["NominalDoor", "Point", "contract_corners", "contract_estimate"]
+
 UP = np.array([0.0, 0.0, 1.0])
 Point = tuple[float, float, float]
 

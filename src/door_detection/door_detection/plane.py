@@ -11,6 +11,8 @@ import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
 
+__all__ = ["Line3D", "Plane", "depth_noise", "fit_plane", "pixel_rays", "ransac_line", "refine_plane", "sample_depth"]
+
 
 @dataclass(frozen=True)
 class Plane:

@@ -18,6 +18,9 @@ from door_contract.converters.camera_info import CameraIntrinsics
 from door_detection.errors import InputError
 from door_detection.options import DetectionOptions
 
+__all__ = ["DepthError", "RgbdFrame", "check_intrinsics", "edge_image", "equalise_luma", "validate_frame",
+           "validate_rgb"]
+
 
 class DepthError(InputError):
     """The depth image (or the region the detector needs) has no valid pixel."""

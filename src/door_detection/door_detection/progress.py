@@ -6,6 +6,8 @@ import sys
 import time
 from typing import TextIO
 
+__all__ = ["ProgressBar"]
+
 
 class ProgressBar:
     """``[#######.........]  42/98  43%  12.3 s  label`` redrawn in place with ``\\r``.

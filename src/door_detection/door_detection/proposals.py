@@ -28,6 +28,8 @@ from door_detection.handle import find_handle
 from door_detection.lines import VerticalLines, detect_vertical_lines
 from door_detection.options import DetectionOptions
 
+__all__ = ["Box", "DoorProposal", "iou", "non_maximum_suppression", "propose_doors"]
+
 Box = tuple[float, float, float, float]
 """x0, y0, x1, y1 in pixels."""
 

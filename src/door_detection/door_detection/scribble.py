@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import numpy as np
 
+__all__ = ["MAX_SCRIBBLE_POINTS", "scribble_problem"]
+
 MAX_SCRIBBLE_POINTS = 10_000
 
 

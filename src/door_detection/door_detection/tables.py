@@ -16,6 +16,10 @@ from typing import Protocol
 
 import numpy as np
 
+__all__ = ["CELL_TARGET", "HANDLE_TOLERANCE", "MODES", "NORMAL_TOLERANCE_DEG", "Grid", "ModeResult", "Outcome",
+           "Placed", "mode_of", "orientation_range", "paper_form", "paper_table", "rate", "success_table", "summary",
+           "worst_cell"]
+
 HANDLE_TOLERANCE = 0.02
 """Success: handle within this distance of the ground truth (m)."""
 NORMAL_TOLERANCE_DEG = 2.0

@@ -29,6 +29,9 @@ from enum import Enum
 from door_contract.ranges import FieldRange, check_fields, check_in_range
 from door_detection.errors import DetectionError
 
+__all__ = ["Neck", "NeckAxis", "SearchStep", "View", "ViewSearch", "ViewSearchOptions", "head_move_time",
+           "option_range", "pan_step_for", "plan_views"]
+
 
 @dataclass(frozen=True)
 class NeckAxis:

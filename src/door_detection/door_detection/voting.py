@@ -40,6 +40,8 @@ from scipy.special import stdtrit
 from door_detection.estimate import DetectedDoor, DetectionOutcome, DetectionResult
 from door_detection.options import DetectionOptions
 
+__all__ = ["VoteResult", "Voter", "precision"]
+
 
 @dataclass(frozen=True)
 class VoteResult:
