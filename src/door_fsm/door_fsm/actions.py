@@ -7,6 +7,9 @@ from typing import Any
 
 from door_contract.vocabulary import Motion, PlannerKind, TaskState, WalkGoal
 
+__all__ = ["Action", "AnnounceState", "AskApproval", "CallGrasp", "CancelPlanning", "ClearApproval", "EndLook",
+           "Execute", "Look", "Notice", "RequestDetection", "RequestFootsteps", "RequestMotion", "StopMotion"]
+
 
 @dataclass(frozen=True)
 class RequestDetection:

@@ -14,6 +14,8 @@ from door_fsm import events as ev
 from door_fsm.exchange import Proposal
 from door_fsm.summaries import plan_summary
 
+__all__ = ["execution_event", "planning_event", "usable_door_estimate"]
+
 
 def execution_event(outcome: ExecutionOutcome, request_id: int) -> ev.Event:
     if outcome.slipped:

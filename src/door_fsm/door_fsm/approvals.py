@@ -8,6 +8,8 @@ from door_fsm.operator_commands import OperatorCommand, OperatorWord
 from door_fsm.states import Phase
 from door_fsm.work import StateWork
 
+__all__ = ["approval_text", "refusal"]
+
 
 def approval_text(state_label: str, request_id: int, work: StateWork, summary: ProposalSummary) -> str:
     """``WALK_TO_DOOR #7: approve footsteps 'stand'? steps=14 | reply 'approve 7', …``."""

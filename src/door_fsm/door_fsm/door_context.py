@@ -13,6 +13,8 @@ from door_contract.payloads import DoorEstimate, FootstepRequest, MotionRequest,
 from door_contract.vocabulary import Backend, DoorOpening, Side, grasp_hand
 from door_fsm import actions as act
 
+__all__ = ["DoorContext"]
+
 
 @dataclass
 class DoorContext:

@@ -4,6 +4,8 @@
 bug's ``ValueError`` is never taken for an operator's unknown command or a bad option.
 """
 
+__all__ = ["DoorFsmError"]
+
 
 class DoorFsmError(Exception):
     """Something the supervisor refuses (its wiring, its options, an operator's text)."""

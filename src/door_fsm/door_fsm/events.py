@@ -8,6 +8,9 @@ from typing import Any
 from door_contract.payloads import ProposalSummary
 from door_fsm.operator_commands import OperatorWord
 
+__all__ = ["Event", "ExecutionFinished", "GraspAnswered", "HandSlipped", "NodeLost", "OperatorSaid", "ProposalFailed",
+           "ProposalReady"]
+
 
 @dataclass(frozen=True)
 class ProposalReady:

@@ -22,6 +22,8 @@ from typing import Any, TypeVar
 from door_contract.payloads import OutcomeStatus, PlanningOutcome
 from door_contract.vocabulary import PlannerKind
 
+__all__ = ["PlanExchange", "Proposal"]
+
 
 @dataclass(frozen=True)
 class Proposal:

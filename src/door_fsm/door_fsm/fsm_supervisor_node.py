@@ -39,6 +39,8 @@ from door_fsm.supervisor import SupervisedRobot, Supervisor
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
 
+__all__ = ["FsmSupervisorNode", "main"]
+
 HEARTBEAT_PERIOD_S = 0.25  # 4 Hz: the sim bridge's dead-man stops the robot when this heartbeat falls silent
 
 

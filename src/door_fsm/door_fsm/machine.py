@@ -32,6 +32,8 @@ from door_fsm.states import Phase, StateOutcome
 from door_fsm.wiring import build_wiring
 from door_fsm.work import STATE_WORK, StateWork, WorkKind
 
+__all__ = ["DoorTaskMachine", "MachineOptions", "MachineOptionsError"]
+
 SUSPENDED = {OperatorCommand.PAUSE: TaskState.PAUSED, OperatorCommand.STOP: TaskState.PAUSED,
              OperatorCommand.MANUAL: TaskState.MANUAL}
 

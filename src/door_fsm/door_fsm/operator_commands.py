@@ -15,6 +15,9 @@ from enum import Enum
 
 from door_fsm.errors import DoorFsmError
 
+__all__ = ["MAX_COMMAND_CHARS", "OperatorCommand", "OperatorWord", "UnknownCommandError", "parse_command",
+           "request_id_of", "usage"]
+
 MAX_COMMAND_CHARS = 200
 _REQUEST_ID = re.compile(r"#(\d+)\b")
 

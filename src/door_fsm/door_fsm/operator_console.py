@@ -29,6 +29,8 @@ from door_fsm.operator_commands import (
     usage,
 )
 
+__all__ = ["OperatorConsole", "main"]
+
 
 class OperatorConsole(Node):
     def __init__(self, approve_all: bool) -> None:

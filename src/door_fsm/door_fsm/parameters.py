@@ -3,6 +3,8 @@
 from door_contract.parameters import ParameterSpec
 from door_contract.ranges import FieldRange
 
+__all__ = ["NODE_NAME", "SUPERVISOR_PARAMETERS"]
+
 NODE_NAME = "fsm_supervisor"
 
 SUPERVISOR_PARAMETERS = (

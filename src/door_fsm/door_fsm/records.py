@@ -16,6 +16,8 @@ from door_contract.payloads import ProposalSummary, StateAttempt
 from door_contract.vocabulary import AttemptOutcome, TaskState
 from door_fsm.states import Phase, StateOutcome
 
+__all__ = ["PHASE_CLOCK", "Clock", "Instant", "StateRecord", "clocks_note"]
+
 
 class Clock(str, Enum):
     WALL = "wall"    # steady (monotonic) seconds

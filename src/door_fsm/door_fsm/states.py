@@ -9,6 +9,8 @@ from __future__ import annotations
 
 from enum import Enum
 
+__all__ = ["Phase", "StateOutcome"]
+
 
 class Phase(str, Enum):
     """Where an active state is in its work: ask a planner, wait for the operator, act."""

@@ -15,6 +15,8 @@ from door_contract.payloads import (
 )
 from door_contract.vocabulary import Autonomy, DoorOpening, TaskEnd
 
+__all__ = ["door_summary", "footstep_summary", "motion_summary", "plan_summary", "task_report", "work_of"]
+
 
 def door_summary(estimate: DoorEstimate) -> ProposalSummary:
     """What the operator is shown of a door estimate: the grasp point, width, hinge, confidence."""

@@ -14,6 +14,8 @@ from door_fsm.errors import DoorFsmError
 from door_fsm.states import StateOutcome
 from door_fsm.work import STATE_WORK
 
+__all__ = ["Wiring", "WiringError", "build_wiring", "success_sequence", "validate_wiring"]
+
 Wiring = dict[tuple[TaskState, StateOutcome], TaskState]
 
 

@@ -13,6 +13,8 @@ from door_contract.vocabulary import Motion, PlannerKind, TaskState, WalkGoal
 from door_fsm.errors import DoorFsmError
 from door_fsm.states import StateOutcome
 
+__all__ = ["STATE_WORK", "StateWork", "WorkKind"]
+
 
 class WorkKind(str, Enum):
     DETECTION = "detection"
