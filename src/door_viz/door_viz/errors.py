@@ -4,6 +4,8 @@
 bug's ``ValueError`` is never taken for a client's bad message.
 """
 
+__all__ = ["DoorVizError"]
+
 
 class DoorVizError(Exception):
     """Something the visualisation refuses; the message says what."""

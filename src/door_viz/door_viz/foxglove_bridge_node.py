@@ -40,6 +40,8 @@ from door_viz.foxglove_core import (
 from door_viz.foxglove_routes import Routes, Watch, WatchChange
 from door_viz.parameters import FOXGLOVE_NODE, FOXGLOVE_PARAMETERS
 
+__all__ = ["FoxgloveBridgeNode", "main"]
+
 EVENT_PERIOD_S = 0.02
 
 

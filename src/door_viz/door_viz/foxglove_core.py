@@ -33,6 +33,9 @@ if TYPE_CHECKING:  # the SDK's types (the listener is called with them); the mod
     from foxglove import Parameter
     from foxglove.websocket import ChannelView, Client, ClientChannel, PlaybackControlRequest, PlaybackState
 
+__all__ = ["JSON_ENCODING", "ClientCommandError", "EventKind", "SchemaLibrary", "ServerEvent", "ServerEvents",
+           "client_channel_refusal", "client_string", "mesh_asset"]
+
 STRING_TYPE = "std_msgs/msg/String"
 JSON_ENCODING = "json"
 

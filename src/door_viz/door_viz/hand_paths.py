@@ -16,6 +16,8 @@ import numpy as np
 from door_contract.converters.trajectory import JointPath
 from door_robot.kinematics import RobotKinematics
 
+__all__ = ["hand_paths", "waypoint_configurations"]
+
 
 def waypoint_configurations(kinematics: RobotKinematics, measured: Mapping[str, float],
                             path: JointPath) -> np.ndarray:

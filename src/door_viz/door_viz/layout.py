@@ -26,6 +26,8 @@ from typing import Any
 from door_contract.frames import Frame
 from door_contract.topics import Topics
 
+__all__ = ["LAYOUT_FILE", "layout_text", "main", "panel_configs"]
+
 LAYOUT_FILE = Path(__file__).resolve().parents[1] / "layouts" / "door_task.json"
 BUTTONS = (("pause", "#f5a623"), ("stop", "#e8590c"), ("resume", "#4a90e2"), ("abort", "#d0021b"))
 SCENE_TOPICS = (Topics.ROBOT_DESCRIPTION, Topics.DOOR_MARKERS, Topics.PROPOSAL_MARKERS, Topics.FOOTSTEP_MARKERS)

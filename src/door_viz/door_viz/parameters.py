@@ -4,6 +4,8 @@ from door_contract.parameters import ParameterSpec
 from door_contract.ranges import FieldRange
 from door_contract.topics import Topics
 
+__all__ = ["FOXGLOVE_NODE", "FOXGLOVE_PARAMETERS", "MARKERS_NODE", "MARKERS_PARAMETERS"]
+
 MARKERS_NODE = "proposal_markers"
 MARKERS_PARAMETERS = (
     ParameterSpec("robot_profile", "talos", "robot profile (params/robot_<name>.yaml): kinematics of the hand "

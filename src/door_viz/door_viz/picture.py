@@ -17,6 +17,8 @@ from door_contract.marker_shapes import MarkerShape
 from door_contract.payloads import DoorEstimate
 from door_viz.proposals import door_shapes, footstep_shapes, hand_path_shapes, swing_shapes
 
+__all__ = ["ProposalPicture", "SoleSize"]
+
 
 @dataclass(frozen=True)
 class SoleSize:

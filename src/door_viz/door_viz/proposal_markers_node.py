@@ -47,6 +47,8 @@ from door_viz.hand_paths import hand_paths
 from door_viz.parameters import MARKERS_NODE, MARKERS_PARAMETERS
 from door_viz.picture import ProposalPicture, SoleSize
 
+__all__ = ["ProposalMarkersNode", "main"]
+
 
 class ProposalMarkersNode(Node):
     def __init__(self) -> None:

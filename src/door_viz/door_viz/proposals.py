@@ -24,6 +24,8 @@ from door_contract.marker_shapes import MarkerKind, MarkerShape
 from door_contract.payloads import DoorEstimate
 from door_contract.vocabulary import Foot
 
+__all__ = ["door_shapes", "footstep_shapes", "hand_path_shapes", "leaf_axes", "swing_shapes"]
+
 LEFT_FOOT_RGBA = (0.12, 0.47, 0.71, 0.8)
 RIGHT_FOOT_RGBA = (1.0, 0.5, 0.05, 0.8)
 DOOR_RGBA = (0.1, 0.9, 0.1, 1.0)
