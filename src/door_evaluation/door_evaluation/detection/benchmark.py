@@ -28,6 +28,8 @@ from door_detection.options import DetectionOptions
 from door_detection.progress import ProgressBar
 from door_evaluation.detection.sim_scenes import Scenario, SceneFrame, render_scenario
 
+__all__ = ["benchmark_scene", "main", "report"]
+
 PAPER_SECONDS_PER_VOTE = 20.5
 """[Banerjee 2015] Table I, pull door: detection time for the 10-frame vote (s)."""
 PAPER_FRAMES_PER_VOTE = 10

@@ -35,6 +35,8 @@ from door_detection.progress import ProgressBar
 from door_detection.proposals import Box, DoorProposal, iou, propose_doors
 from door_robot.locations import shared_data_dir
 
+__all__ = ["DOOR", "evaluate", "load_dataset", "main"]
+
 MAX_SIDE = 1024
 MIN_LINE_FRACTION = 0.25
 IOU_MATCH = 0.5

@@ -42,6 +42,8 @@ from door_detection.progress import ProgressBar
 from door_detection.tables import HANDLE_TOLERANCE, MODES, NORMAL_TOLERANCE_DEG, paper_table, success_table, summary
 from door_evaluation.detection.sim_scenes import DOOR_COLOURS, HANDLE_COLOURS, Scenario, SceneFrame, render_scenario
 
+__all__ = ["EvaluationGrid", "main", "report", "run_evaluation"]
+
 
 @dataclass(frozen=True)
 class EvaluationGrid:

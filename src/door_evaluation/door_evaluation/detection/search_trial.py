@@ -36,6 +36,8 @@ if TYPE_CHECKING:  # the caller builds the world (and imports the sim)
     from door_sim_bridge.world import DoorWorld
     from door_sim_bridge.world.camera import CameraFrame
 
+__all__ = ["SearchOutcome", "SearchSettings", "home_view", "operator_scribble", "run_search"]
+
 
 @dataclass(frozen=True)
 class SearchSettings:

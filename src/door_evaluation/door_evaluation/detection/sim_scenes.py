@@ -28,6 +28,9 @@ from door_contract.vocabulary import Side
 if TYPE_CHECKING:  # the sim is imported where a world is built, not with this module
     from door_sim_bridge.world import DoorWorld, WorldConfig
 
+__all__ = ["DOOR_COLOURS", "HANDLE_COLOURS", "Scenario", "SceneFrame", "lever_corners", "render_scenario",
+           "synthetic_scribble"]
+
 CAMERA_WIDTH = 1024
 CAMERA_HEIGHT = 544
 CAMERA_VERTICAL_FOV_DEG = 48.0

@@ -41,6 +41,9 @@ from door_detection.view_search import Neck, ViewSearchOptions
 from door_evaluation.detection.search_trial import SearchOutcome, SearchSettings, run_search
 from door_evaluation.detection.trial_scenes import TrialScene, random_scene, world_config
 
+__all__ = ["SearchResult", "TableTwoGrid", "TrialResult", "failed_starts", "judge", "report", "run_table", "run_trial",
+           "search_cost"]
+
 
 @dataclass(frozen=True)
 class TableTwoGrid:

@@ -25,6 +25,8 @@ from door_contract.vocabulary import DoorOpening, HingeSide
 if TYPE_CHECKING:  # the sim is imported where a world is built, not with this module
     from door_sim_bridge.world import WorldConfig
 
+__all__ = ["Appearance", "Colour", "TrialScene", "random_appearance", "random_scene", "world_config"]
+
 Colour = tuple[float, float, float]
 
 LEAF_COLOURS: tuple[Colour, ...] = ((0.55, 0.33, 0.17), (0.76, 0.60, 0.42), (0.20, 0.40, 0.25),

@@ -33,6 +33,8 @@ from footstep_planner.parameters import PLANNER_PARAMETERS
 from footstep_planner.robot_limits import options_for_walking
 from footstep_planner.world import World
 
+__all__ = ["PAPER_FIGURE", "main"]
+
 PAPER_FIGURE = "n/a (plan 10-40 s)"
 PEER_FIGURE = "n/a"
 TARGET_SECONDS = 0.050

@@ -25,6 +25,8 @@ from footstep_planner.plan import PlanResult
 from footstep_planner.requests import GoalSettings, options_for_problem, walk_problem
 from footstep_planner.world import World
 
+__all__ = ["COARSE", "WIDTHS", "DoorCase", "PlanningCase", "approach_cases", "doors", "passage_cases"]
+
 DISTANCES = (1.0, 2.0, 3.0, 4.0)
 LATERALS = (-0.6, -0.3, 0.0, 0.3, 0.6)
 YAWS = (-0.6, -0.3, 0.0, 0.3, 0.6)

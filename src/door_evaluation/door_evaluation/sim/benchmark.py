@@ -35,6 +35,8 @@ from door_sim_bridge.world import (
     WorldConfig,
 )
 
+__all__ = ["WALK_STANCE", "main", "physics_walking", "straight_walk"]
+
 PHYSICS_SECONDS = 10.0  # simulated seconds per physics measurement
 WALK_STRIDES, WALK_STRIDE = 6, 0.2  # the walking measurement's plan (strides, m)
 WALK_STANCE = StanceConfig(distance=3.0)  # far enough from the door for the walk

@@ -31,6 +31,8 @@ from door_trajopt.problem import FloatArray, TrajectoryProblem
 from door_trajopt.result import OptimizationResult
 from door_trajopt.sqp import ConstraintHandling, SqpOptions, SqpSolver
 
+__all__ = ["main"]
+
 
 class Solver(Protocol):
     """A backend object built once per problem (``ChompSolver``, ``SqpSolver``)."""

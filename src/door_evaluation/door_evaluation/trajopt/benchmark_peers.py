@@ -28,6 +28,8 @@ from door_robot.profile import load_profile
 from door_trajopt.chomp import ChompOptions, ChompSolver
 from door_trajopt.sqp import ConstraintHandling, SqpOptions, SqpSolver
 
+__all__ = ["main", "run"]
+
 TOLERANCE = 1e-5  # m / rad: every solver's constraint tolerance (the motion library's)
 MAX_ITERATIONS = 300
 PAPER_SECONDS = 10.1  # [Banerjee 2015] Sec. V: one TrajOpt plan of the pull door

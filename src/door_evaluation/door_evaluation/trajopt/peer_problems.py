@@ -37,6 +37,9 @@ from door_trajopt.ik import pose_error
 from door_trajopt.problem import ConstraintKind, Derivative, JointLimits, SmoothnessSpec, TrajectoryProblem
 from door_trajopt.waypoint_constraints import WaypointFunction, WaypointValue, waypoint_constraint
 
+__all__ = ["ARC_POSES", "PeerProblem", "Score", "arm_chain", "door_arc_problem", "own_arm_joints", "peer_problems",
+           "reach_problem", "score", "trajectory_problem"]
+
 WAYPOINTS = 100
 ARC_POSES = 40  # 240 equalities
 ARC_ANGLE = 0.3  # rad the leaf turns while the hand holds it

@@ -28,6 +28,8 @@ import numpy as np
 
 from door_evaluation.trajopt.peer_problems import PeerProblem
 
+__all__ = ["INSTALL_COMMAND", "PeerRun", "TrajOptPeer", "tesseract_available"]
+
 INSTALL_COMMAND = ".venv/bin/pip install tesseract-robotics==0.5.1"
 GROUP = "manipulator"
 

@@ -47,6 +47,10 @@ from door_trajopt.problem import (
     TrajectoryProblem,
 )
 
+__all__ = ["DOOR_ARC_CHAIN", "DOOR_ARC_DOOR", "DOOR_ARC_LIMITS", "BenchmarkCase", "HandOnHandle", "IntArray",
+           "JointValue", "PlanarChain", "PlanarDoor", "SeedPhases", "TrajectoryShape", "door_arc_case", "door_arc_pose",
+           "rotation", "seed000_sized_case", "suffix_sums"]
+
 IntArray = npt.NDArray[np.int64]
 
 
