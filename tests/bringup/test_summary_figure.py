@@ -11,9 +11,10 @@ from rosgraph_msgs.msg import Clock
 from std_msgs.msg import String
 
 from door_bringup.bags.storage import BagWriter, StorageFormat
-from door_bringup.progress import ProgressPrinter, TaskProgress, phase_of, progress_line
+from door_bringup.progress import ProgressPrinter, TaskProgress, progress_line
 from door_bringup.summary_data import handle_position, read_run, signed_margin, support_polygon
 from door_bringup.summary_figure import plot_summary
+from door_bringup.table_one import phase_of
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
 from door_contract.converters.joint_state import positions_to_joint_state
 from door_contract.payloads import DoorEstimate, encode

@@ -20,6 +20,8 @@ from door_bringup.processes import ProcessSupervisor
 from door_bringup.workspace import Workspace, repository_root
 from door_contract.network import keep_discovery_local
 
+__all__ = ["check_graph", "main"]
+
 
 def wait_for_nodes(probe: Node, names: set[str], timeout_s: float,
                    supervisor: ProcessSupervisor | None = None) -> set[str]:

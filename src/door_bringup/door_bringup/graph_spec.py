@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+__all__ = ["FOXGLOVE_BRIDGE", "GRAPH", "NodeLaunch"]
+
 
 @dataclass(frozen=True)
 class NodeLaunch:

@@ -42,6 +42,9 @@ from door_bringup.trial_ranges import NARROW, RangeSet, TrialRanges, ranges_name
 from door_bringup.workspace import Workspace, repository_root
 from door_contract.vocabulary import AttemptOutcome, TaskEnd, TaskState
 
+__all__ = ["RECORDED_BEFORE", "SETTINGS_FILE", "TRIAL_FILE", "ResumeError", "draw_trials", "falls_line", "main",
+           "overhead_line", "run_trials", "sample_trial", "summary", "wall_time_line"]
+
 
 def sample_trial(rng: np.random.Generator, base: TaskOptions, trial: int,
                  ranges: TrialRanges = NARROW) -> TaskOptions:

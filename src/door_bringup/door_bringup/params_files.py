@@ -25,6 +25,8 @@ from door_trajopt.parameters import OPTIMIZER_PARAMETERS
 from door_viz.parameters import FOXGLOVE_NODE, FOXGLOVE_PARAMETERS, MARKERS_NODE, MARKERS_PARAMETERS
 from footstep_planner.parameters import PLANNER_PARAMETERS
 
+__all__ = ["ROBOT_PARAMETER", "SPECS_BY_NODE", "main", "robot_names", "robot_nodes"]
+
 SPECS_BY_NODE = {
     "sim_bridge": BRIDGE_PARAMETERS,
     "door_detector": DETECTOR_PARAMETERS,

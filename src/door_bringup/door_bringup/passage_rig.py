@@ -74,6 +74,10 @@ from footstep_planner.requests import (
     stand_pose,
 )
 
+__all__ = ["NODE_DEFAULTS", "WALKED_THROUGH", "EstimateError", "HandCommand", "PassageRun", "erroneous_estimate",
+           "main", "motion_setup", "open_door", "opening_hand", "opening_sequence", "passage_steps", "perfect_estimate",
+           "run_door", "stand_world"]
+
 NODE_DEFAULTS = {spec.name: spec.default for spec in PLANNER_PARAMETERS}
 """The footstep planner node's default parameters (search settings and goal settings)."""
 JITTER = np.array([0.02, 0.02, np.radians(1.0)])

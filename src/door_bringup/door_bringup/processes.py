@@ -17,6 +17,8 @@ from pathlib import Path
 from door_bringup.graph_spec import NodeLaunch
 from door_bringup.workspace import Workspace
 
+__all__ = ["NodeProcess", "ProcessSupervisor"]
+
 
 @dataclass
 class NodeProcess:

@@ -16,6 +16,8 @@ from typing import Any
 from door_bringup.table_one import PHASES, phase_of
 from door_contract.vocabulary import TaskState
 
+__all__ = ["ProgressPrinter", "TaskProgress", "numbered_state", "progress_line"]
+
 
 @dataclass(frozen=True)
 class TaskProgress:

@@ -25,6 +25,8 @@ from door_contract.stamps import from_time_msg
 from door_contract.topics import Topics
 from door_contract.vocabulary import TaskState
 
+__all__ = ["ProgressMonitor"]
+
 
 class ProgressMonitor:
     def __init__(self, node: Node, period_s: float = 0.5) -> None:

@@ -11,6 +11,8 @@ from door_bringup.params_files import robot_names
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
 
+__all__ = ["add_robot_argument", "check_robot"]
+
 
 def add_robot_argument(parser: argparse.ArgumentParser,
                        help_text: str = "robot profile (params/robot_<name>.yaml) of every node that takes one") -> None:

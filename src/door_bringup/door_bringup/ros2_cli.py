@@ -20,6 +20,8 @@ import yaml
 
 from door_bringup.workspace import Workspace, WorkspaceError, repository_root
 
+__all__ = ["main"]
+
 
 def set_fields(message: Any, values: dict) -> Any:
     """Fill a ROS message from a nested dict (what ``ros2 topic pub`` takes as YAML)."""

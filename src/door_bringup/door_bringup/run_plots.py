@@ -31,6 +31,8 @@ from door_contract.payloads import MotionFigures, PlanningOutcome, decode  # noq
 from door_contract.topics import Topics, TopicSpec  # noqa: E402
 from door_contract.vocabulary import Foot
 
+__all__ = ["planned_motions", "plot_footsteps", "plot_run", "plot_trajectories", "save_detection"]
+
 
 def _messages(bag: Path, topic: TopicSpec) -> list[Any]:
     """``topic``'s messages in ``bag``, decoded (ROS 2's generated message classes carry no types)."""

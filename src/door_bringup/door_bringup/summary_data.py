@@ -44,6 +44,8 @@ from door_robot.profile import load_profile
 from door_sim_bridge.world.door import HINGE_JOINT
 from door_viz.proposals import leaf_axes
 
+__all__ = ["Decoded", "RunSeries", "handle_position", "read_run", "signed_margin", "support_polygon"]
+
 SAMPLE_PERIOD_S = 0.1  # s of sim time between samples of the robot's state
 
 

@@ -27,6 +27,8 @@ from door_viz.proposals import leaf_axes  # noqa: E402
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
 
+__all__ = ["plot_summary"]
+
 GRASP_DISTANCE_M = 0.02
 FOOT_COLOURS = {Foot.LEFT: "tab:blue", Foot.RIGHT: "tab:orange"}
 HAND_COLOURS = {"left": "tab:blue", "right": "tab:red"}

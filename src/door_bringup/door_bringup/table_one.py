@@ -10,6 +10,8 @@ from typing import Any
 from door_contract.payloads import StateAttempt, decode_document
 from door_contract.vocabulary import AttemptOutcome, TaskState
 
+__all__ = ["PHASES", "PhaseRow", "format_table", "phase_of", "phase_rows", "state_attempts"]
+
 PHASES = ("DETECT_DOOR", "WALK_TO_DOOR", "OPEN_DOOR", "WALK_THROUGH")
 
 

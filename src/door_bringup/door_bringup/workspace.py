@@ -15,6 +15,8 @@ from pathlib import Path
 
 from door_robot.locations import find_checkout
 
+__all__ = ["Workspace", "WorkspaceError", "find_repository_root", "repository_root"]
+
 
 class WorkspaceError(RuntimeError):
     """The workspace is not built, or a package/executable is not in it."""

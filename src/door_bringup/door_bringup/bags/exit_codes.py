@@ -17,6 +17,8 @@ from enum import IntEnum
 
 from door_bringup.bags.storage import BagError, BagMetadataError, BagNotFoundError, BagStorageError, BagWriteError
 
+__all__ = ["BagExit", "exit_code_for"]
+
 
 class BagExit(IntEnum):
     OK = 0

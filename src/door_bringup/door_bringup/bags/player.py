@@ -35,6 +35,8 @@ from door_contract.network import keep_discovery_local
 from door_contract.stamps import to_time_msg
 from door_contract.topics import Topics, TopicSpec, interface_class
 
+__all__ = ["BagPlayer", "PlaybackOptions", "PlaybackOptionsError", "main", "playback_offsets", "qos_for"]
+
 
 @dataclass(frozen=True)
 class PlaybackOptions:

@@ -21,6 +21,8 @@ from rclpy.duration import Duration
 from rclpy.qos import DurabilityPolicy, HistoryPolicy, LivelinessPolicy, QoSProfile, ReliabilityPolicy
 from rosbags.interfaces import Qos, QosDurability, QosHistory, QosLiveliness, QosReliability, QosTime
 
+__all__ = ["offered_qos", "playback_profile"]
+
 VOLATILE_DEPTH = 100
 
 

@@ -37,6 +37,8 @@ from door_contract.node_support import Heartbeat, run_node
 from door_contract.qos import matching_subscription
 from door_contract.topics import interface_class
 
+__all__ = ["BagRecorder", "main", "message_digest", "recorded_key"]
+
 DRAIN_S = 2.0
 """s the recorder goes on writing what is queued after Ctrl-C / SIGTERM: it is stopped right after
 the graph, whose last messages (a fall's outcome, the FAILED state) were still queued and lost."""

@@ -27,6 +27,9 @@ from rosbags.rosbag2.metadata import parse_qos
 from rosbags.rosbag2.storage_mcap import McapReader
 from rosbags.typesys import Stores, get_typestore
 
+__all__ = ["BagError", "BagMessage", "BagMetadataError", "BagNotFoundError", "BagStorageError", "BagTopic",
+           "BagWriteError", "BagWriter", "Compression", "StorageFormat", "list_topics", "read_messages", "recorded_qos"]
+
 ROS_DISTRO = "jazzy"
 
 
