@@ -33,7 +33,7 @@ import numpy as np
 import placo
 
 from door_contract.converters.footsteps import FootPlacement
-from door_contract.vocabulary import Foot, Side
+from door_contract.vocabulary import Foot
 from door_robot.profile import RobotProfile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.walking.dcm import CentreOfMassMotion, DcmFeedback
@@ -43,8 +43,6 @@ from door_sim_bridge.walking.stabilizer import ContactWrench, Stabilizer, Stabil
 
 __all__ = ["BalanceMode", "Measurement", "WalkingController", "level_frame", "mean_yaw", "supports_from",
            "yaw_rotation"]
-
-FOOT_OF_SIDE = {Side.LEFT: Foot.LEFT, Side.RIGHT: Foot.RIGHT}
 
 
 class BalanceMode(str, Enum):
