@@ -41,8 +41,8 @@ from door_sim_bridge.walking.gait import GaitOptions, footstep_sequence, placo_p
 from door_sim_bridge.walking.model import PLACO_TRUNK_FRAME, joint_split, load_placo_robot
 from door_sim_bridge.walking.stabilizer import ContactWrench, Stabilizer, StabilizerOptions
 
-__all__ = ["BalanceMode", "Measurement", "WalkingController", "level_frame", "mean_yaw", "supports_from",
-           "yaw_rotation"]
+__all__ = ["BalanceMode", "Measurement", "WalkingController", "level_frame", "mean_yaw", "offset_in_stance",
+           "stance_frame", "supports_from", "yaw_rotation"]
 
 
 class BalanceMode(str, Enum):
@@ -85,6 +85,22 @@ def supports_from(items: list[placo.Support]) -> placo.Supports:
 
 def mean_yaw(first: np.ndarray, second: np.ndarray) -> float:
     return math.atan2(first[1, 0] + second[1, 0], first[0, 0] + second[0, 0])
+
+
+def stance_frame(feet: Mapping[Foot, np.ndarray]) -> np.ndarray:
+    """The soles' midpoint on the floor, their mean heading (4×4)."""
+    left, right = feet[Foot.LEFT], feet[Foot.RIGHT]
+    frame = np.eye(4)
+    frame[:3, :3] = yaw_rotation(mean_yaw(left, right))
+    frame[:2, 3] = 0.5 * (left[:2, 3] + right[:2, 3])
+    return frame
+
+
+def offset_in_stance(point: np.ndarray, feet: Mapping[Foot, np.ndarray]) -> str:
+    """Where ``point`` stands from the soles' midpoint, in the stance frame (m: ahead, left)."""
+    stance = stance_frame(feet)
+    ahead, left = stance[:2, :2].T @ (np.asarray(point)[:2] - stance[:2, 3])
+    return f"({ahead:+.3f}, {left:+.3f}) m from the feet's midpoint"
 
 
 class WalkingController:
@@ -137,12 +153,7 @@ class WalkingController:
         self._stand_here(settle=False)  # placed standing: nothing to settle
 
     def _stance_frame(self) -> np.ndarray:
-        """Feet midpoint on the floor, mean heading."""
-        left, right = self._feet[Foot.LEFT], self._feet[Foot.RIGHT]
-        frame = np.eye(4)
-        frame[:3, :3] = yaw_rotation(mean_yaw(left, right))
-        frame[:2, 3] = 0.5 * (left[:2, 3] + right[:2, 3])
-        return frame
+        return stance_frame(self._feet)
 
     def _stand_here(self, settle: bool = True) -> None:
         """Hold the soles where the model has them. After a walk (``settle``) the CoM is first
@@ -196,7 +207,12 @@ class WalkingController:
         self._parameters = parameters
         self._generator = placo.WalkPatternGenerator(self.robot, parameters)
         supports = placo.FootstepsPlanner.make_supports(footsteps, 0.0, True, parameters.has_double_support(), True)
-        trajectory = self._generator.plan(supports, self.robot.com_world(), 0.0)
+        com = np.array(self.robot.com_world())
+        try:
+            trajectory = self._generator.plan(supports, com, 0.0)
+        except RuntimeError as error:  # placo's QP found no pattern: a refused plan, not a bug
+            raise SimulationError(f"the walking pattern generator found no CoM trajectory for {len(steps)} steps "
+                                  f"from the CoM at {offset_in_stance(com, feet_now)} ({error})") from error
         if not trajectory.t_end > 0.0:
             raise SimulationError("the walking pattern generator found no CoM trajectory")
         self._trajectory, self._walk_time, self._stopping = trajectory, 0.0, False
