@@ -93,13 +93,29 @@ def test_execution_deadline_scales_with_the_work_on_the_robot_clock():
     assert "robot clock" in machine.records[-2].reason
 
 
-def test_planning_timeout_repeats_detection_on_the_wall_clock():
+def test_detection_times_out_on_the_robot_clock_and_repeats():
+    """The detector answers at the robot's pace (camera frames, head moves): a loaded machine
+    slows the simulation, and 60 s of wall clock once nearly cut a head search short (56 s)."""
     machine = DoorTaskMachine(MachineOptions(planning_timeout_s=60.0))
     machine.start(t(0.0))
-    assert machine.tick(Instant(59.0, 10_000.0)) == []  # the robot clock does not bound planning
-    actions = machine.tick(Instant(61.0, 10_001.0))
+    assert machine.tick(Instant(10_000.0, 59.0)) == []  # the wall clock does not bound detection
+    actions = machine.tick(Instant(10_001.0, 61.0))
     assert machine.state is TaskState.DETECT_DOOR and machine.records[-2].outcome is StateOutcome.TIMEOUT
+    assert "took longer than 60.0 s (robot clock)" in machine.records[-2].reason
     assert any(isinstance(a, act.RequestDetection) and a.request_id == machine.request_id for a in actions)
+
+
+def test_a_planner_times_out_on_the_wall_clock():
+    """Planners compute in real time: the robot clock does not bound a footstep plan."""
+    machine = DoorTaskMachine(MachineOptions(planning_timeout_s=60.0, autonomy=Autonomy.FULL))
+    robot = Robot(machine)
+    pending = machine.start(t(0.0))
+    while machine.state is not TaskState.WALK_TO_DOOR:
+        pending = pending[1:] + robot.answer(pending[0])
+    assert machine.tick(Instant(59.0, 10_000.0)) == []
+    machine.tick(Instant(61.0, 10_001.0))
+    assert machine.records[-2].state is TaskState.WALK_TO_DOOR
+    assert machine.records[-2].outcome is StateOutcome.TIMEOUT and "(wall clock)" in machine.records[-2].reason
 
 
 def test_repeats_carry_growing_attempts_and_never_resend_a_request():

@@ -27,7 +27,7 @@ from door_fsm import events as ev
 from door_fsm.approvals import approval_text, refusal
 from door_fsm.errors import DoorFsmError
 from door_fsm.operator_commands import OperatorCommand, OperatorWord
-from door_fsm.records import PHASE_CLOCK, Instant, StateRecord
+from door_fsm.records import PHASE_CLOCK, Clock, Deadline, Instant, StateRecord
 from door_fsm.states import Phase, StateOutcome
 from door_fsm.wiring import build_wiring
 from door_fsm.work import STATE_WORK, StateWork, WorkKind
@@ -70,8 +70,8 @@ class DoorTaskMachine:
         self.records: list[StateRecord] = []
         self.failure_reason = ""
         self._request_id = 0
-        self._deadline: float | None = None  # on PHASE_CLOCK[self.phase]
-        self._phase_started = 0.0
+        self._deadline: Deadline | None = None
+        self._phase_started = 0.0  # on PHASE_CLOCK[self.phase]
         self._work_s = 0.0  # nominal duration of the proposal awaiting execution (robot s)
         self._repeats: Counter[TaskState] = Counter()
         self._slips = 0
@@ -131,14 +131,12 @@ class DoorTaskMachine:
         return []
 
     def _tick(self, now: Instant) -> list[act.Action]:
-        if (self._deadline is None or self.phase is None or self.state.is_terminal
-                or now.on(PHASE_CLOCK[self.phase]) <= self._deadline):
+        if self._deadline is None or self.phase is None or self.state.is_terminal or not self._deadline.passed(now):
             return []
         if self.phase is Phase.AWAITING_APPROVAL:
             return self._finish(StateOutcome.TIMEOUT, now,
                                 f"operator did not answer within {self.options.approval_timeout_s:g} s")
-        limit = self._deadline - self._phase_started
-        reason = f"{self.phase.value} took longer than {limit:.1f} s ({PHASE_CLOCK[self.phase].value} clock)"
+        reason = f"{self.phase.value} took longer than {self._deadline}"
         return self._leave_early(reason) + self._retry(reason, now, outcome=StateOutcome.TIMEOUT)
 
     # ------------------------------------------------------------------ state entry and exit
@@ -171,7 +169,14 @@ class DoorTaskMachine:
     def _begin_phase(self, phase: Phase, now: Instant, timeout_s: float) -> None:
         self.phase = phase
         self._phase_started = now.on(PHASE_CLOCK[phase])
-        self._deadline = self._phase_started + timeout_s
+        self._deadline = Deadline.after(now, self._deadline_clock(phase), timeout_s)
+
+    def _deadline_clock(self, phase: Phase) -> Clock:
+        """The phase's own clock, but the robot's for planning the robot answers at its pace
+        (detection: :attr:`~door_fsm.work.WorkKind.answered_in_robot_time`)."""
+        if phase is Phase.PLANNING and self._active_work.kind.answered_in_robot_time:
+            return Clock.ROBOT
+        return PHASE_CLOCK[phase]
 
     def _close_phase(self, now: Instant) -> None:
         if self.phase is None or not self.records:

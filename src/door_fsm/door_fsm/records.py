@@ -4,7 +4,9 @@ Each phase's deadline and time runs on the clock of what it waits for (docs/CLOC
 planning and the operator's answer on the **wall** clock (planners compute and people read
 in real time, whatever the simulation's speed), execution on the **robot** clock (sim time
 under ``use_sim_time``: a 40-step walk takes 40 step times of the robot's time, however
-fast the simulation runs on this machine).
+fast the simulation runs on this machine). The detector answers at the robot's pace (camera
+frames, head moves): DETECT_DOOR's planning deadline is on the robot clock, its time still
+counted on the wall clock with the other planning (the overhead a run waits for).
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ from door_contract.payloads import ProposalSummary, StateAttempt
 from door_contract.vocabulary import AttemptOutcome, TaskState
 from door_fsm.states import Phase, StateOutcome
 
-__all__ = ["PHASE_CLOCK", "Clock", "Instant", "StateRecord", "clocks_note"]
+__all__ = ["PHASE_CLOCK", "Clock", "Deadline", "Instant", "StateRecord", "clocks_note"]
 
 
 class Clock(str, Enum):
@@ -25,6 +27,25 @@ class Clock(str, Enum):
 
 
 PHASE_CLOCK = {Phase.PLANNING: Clock.WALL, Phase.AWAITING_APPROVAL: Clock.WALL, Phase.EXECUTING: Clock.ROBOT}
+
+
+@dataclass(frozen=True)
+class Deadline:
+    """When a phase runs out: ``at`` s on ``clock``, ``limit_s`` after the phase began."""
+
+    clock: Clock
+    at: float
+    limit_s: float
+
+    @classmethod
+    def after(cls, now: Instant, clock: Clock, limit_s: float) -> Deadline:
+        return cls(clock, now.on(clock) + limit_s, limit_s)
+
+    def passed(self, now: Instant) -> bool:
+        return now.on(self.clock) > self.at
+
+    def __str__(self) -> str:
+        return f"{self.limit_s:.1f} s ({self.clock.value} clock)"
 
 
 @dataclass(frozen=True)

@@ -23,6 +23,13 @@ class WorkKind(str, Enum):
     GRASP = "grasp"
 
     @property
+    def answered_in_robot_time(self) -> bool:
+        """Whether the answer comes at the robot's pace: the detector confirms a door from camera
+        frames and head moves, which come in robot time (a loaded machine slows the simulation,
+        and a wall-clock deadline would cut a head search short); planners compute in real time."""
+        return self is WorkKind.DETECTION
+
+    @property
     def planner(self) -> PlannerKind:
         """The planner of footstep and motion work (its requests, proposals and cancels)."""
         planners = {WorkKind.FOOTSTEPS: PlannerKind.FOOTSTEPS, WorkKind.MOTION: PlannerKind.MOTION}
