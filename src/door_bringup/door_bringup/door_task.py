@@ -49,6 +49,7 @@ from door_contract.converters.diagnostics import status_values
 from door_contract.network import keep_discovery_local
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import TaskReport, decode, encode_document
+from door_contract.stamps import stamp_ns
 from door_contract.topics import Topics
 from door_contract.vocabulary import TaskEnd
 from door_fsm.operator_commands import request_id_of
@@ -59,6 +60,9 @@ RECORDER = NodeLaunch("door_bringup", "bag_record", "bag_recorder")
 RECORDER_CONFIRM_S = 30.0
 """s (wall clock) the job waits for the recorder to say the terminal state is in the bag before it
 stops the graph: a safety net, the wait ends on the recorder's heartbeat (twice a second)."""
+WALL_SAFETY = 5.0
+"""× a run's ``timeout_s`` (robot time) of wall clock after which it is given up even so: the net
+for a simulation that no longer advances (a node that exits is caught at once)."""
 
 
 @dataclass(frozen=True)
@@ -77,7 +81,7 @@ class TaskOptions:
     wind: float = 0.0
     door_width: float = 0.914
     handle_height: float = 0.91
-    timeout_s: float = 900.0
+    timeout_s: float = 900.0  # s of the robot's time (sim time) the task may take; WALL_SAFETY × it on the wall clock
     record: bool = True
     storage: str = "sqlite3"
     compression: str = "none"  # "zstd": compressed mcap chunks (with storage mcap)
@@ -130,6 +134,7 @@ class ScriptedOperator(Node):
         self.report: TaskReport | None = None
         self.states: list[str] = []
         self.base_xy: tuple[float, float] | None = None
+        self.robot_time_s = 0.0  # the robot's clock (sim time) as /odom last stamped it
         self.recorded: dict[str, str] = {}  # the recorder's heartbeat: latched topic → digest of its last message
         create_contract_subscription(self, Topics.ODOM, self._on_odom)
         create_contract_subscription(self, Topics.DIAGNOSTICS, self._on_diagnostics)
@@ -167,6 +172,7 @@ class ScriptedOperator(Node):
 
     def _on_odom(self, msg: Odometry) -> None:
         self.base_xy = (round(msg.pose.pose.position.x, 3), round(msg.pose.pose.position.y, 3))
+        self.robot_time_s = max(self.robot_time_s, stamp_ns(msg.header.stamp) * 1e-9)
         self.progress.odom(msg)
 
 
@@ -203,6 +209,10 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
     return report
 
 
+def _no_report(reason: str) -> dict:
+    return {"final_state": TaskEnd.FAILED, "failure_reason": reason, "attempts": []}
+
+
 def _wait_until_recorded(operator: ScriptedOperator, terminal_state: String) -> None:
     """Keep the graph up until the recorder has written the FSM's terminal state: stopped at once,
     the bag of a push door that reached DONE once ended at WALK_THROUGH (the recorder, behind
@@ -217,16 +227,22 @@ def _wait_until_recorded(operator: ScriptedOperator, terminal_state: String) -> 
 
 
 def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, timeout_s: float) -> dict:
-    deadline = time.monotonic() + timeout_s
-    while operator.report is None and time.monotonic() < deadline:
+    """Spin until the FSM's TaskReport, a node's exit, or ``timeout_s`` of the robot's time (the
+    task's own pace, whatever the machine's load: with two graphs per core a wall-clock limit
+    ends trials that are still working), with :data:`WALL_SAFETY` × ``timeout_s`` of wall clock as
+    the net for a simulation that no longer advances."""
+    started, wall_limit = time.monotonic(), WALL_SAFETY * timeout_s
+    while operator.report is None:
         rclpy.spin_once(operator, timeout_sec=0.1)
         operator.progress.tick()
         dead = [c.launch.node_name for c in supervisor.exited()]
         if dead:
-            return {"final_state": TaskEnd.FAILED, "failure_reason": f"process(es) exited: {', '.join(dead)}",
-                    "attempts": []}
-    if operator.report is None:
-        return {"final_state": TaskEnd.FAILED, "failure_reason": f"no TaskReport within {timeout_s:g} s", "attempts": []}
+            return _no_report(f"process(es) exited: {', '.join(dead)}")
+        if operator.robot_time_s > timeout_s:
+            return _no_report(f"no TaskReport within {timeout_s:g} s of the robot's time")
+        if time.monotonic() - started > wall_limit:
+            return _no_report(f"no TaskReport within {wall_limit:g} s of wall time (the robot's clock read "
+                              f"{operator.robot_time_s:.1f} s)")
     report = operator.report
     return {"final_state": report.final_state, "failure_reason": report.failure_reason,
             "opening": report.opening, "autonomy": report.autonomy,
@@ -261,7 +277,9 @@ def parse_options(argv: list[str] | None) -> tuple[TaskOptions, Path | None]:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--backend", choices=("sqp", "chomp"), default="sqp")
     parser.add_argument("--distance", type=float, default=3.0, help="start distance to the door (m)")
-    parser.add_argument("--timeout", type=float, default=900.0, help="give up after this many seconds")
+    parser.add_argument("--timeout", type=float, default=900.0,
+                        help="give up after this many seconds of the robot's time (sim time; 5x that of wall time "
+                             "as a safety net)")
     parser.add_argument("--storage", choices=("sqlite3", "mcap"), default="sqlite3")
     parser.add_argument("--compression", choices=("none", "zstd"), default="none",
                         help="zstd: compressed mcap chunks (needs --storage mcap)")

@@ -69,7 +69,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--autonomy", choices=("full", "supervised", "step"), default="full")
     parser.add_argument("--camera-rate", type=float, default=2.0, help="head camera frames per second of sim time")
     parser.add_argument("--openings", nargs="+", choices=("push", "pull"), default=["push", "pull"])
-    parser.add_argument("--timeout", type=float, default=600.0, help="per trial (s)")
+    parser.add_argument("--timeout", type=float, default=600.0,
+                        help="per trial, s of the robot's time (sim time; 5x that of wall time as a safety net)")
     parser.add_argument("--jobs", type=int, default=1,
                         help="trials at once, each graph in a ROS domain of its own (mind the cores: a loaded "
                              "machine slows the graph, not the result)")
