@@ -54,7 +54,7 @@ from door_contract.topics import Topics
 from door_contract.vocabulary import TaskEnd
 from door_fsm.operator_commands import request_id_of
 
-__all__ = ["TaskOptions", "main", "parse_options", "run_task"]
+__all__ = ["ScriptedOperator", "TaskOptions", "main", "parse_options", "run_task"]
 
 RECORDER = NodeLaunch("door_bringup", "bag_record", "bag_recorder")
 RECORDER_CONFIRM_S = 30.0
