@@ -17,8 +17,11 @@ import pytest
 from walk_plans import sole_error, straight_plan, turn_plan
 
 from door_contract.payloads import OutcomeStatus
+from door_contract.vocabulary import Foot
 from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
 from door_sim_bridge.execution.footsteps import STILL_RADIUS, STILL_TIME, STILL_TIMEOUT
+from door_sim_bridge.walking.controller import Measurement, stance_frame
+from door_sim_bridge.walking.stabilizer import ContactWrench
 from door_sim_bridge.world import DoorWorld, EventKind, StanceConfig, WorldConfig
 
 FAR_FROM_THE_DOOR = StanceConfig(distance=3.5)
@@ -120,3 +123,22 @@ def test_a_footstep_plan_beyond_the_limits_is_rejected_and_the_robot_stands(worl
     assert result.status is OutcomeStatus.REJECTED and "max_stride" in result.reason
     world.step(int(0.5 * world.config.physics_rate))
     assert np.linalg.norm(world.base_pose()[:2, 3] - start[:2, 3]) < 0.005 and not world.walking
+
+
+def test_a_walk_starts_from_a_com_leaning_beyond_the_soles(world):
+    """Leaning 10 cm forward against a force (the stabiliser's largest offset: a Monte-Carlo pull
+    door's leaf on the robot), the CoM is beyond the region where the pattern's ZMP may start;
+    placo then found no pattern ("Failed to plan CoM trajectory", 4 refusals of one walk
+    through). The walk is planned from the nearest point inside that region instead."""
+    controller = world.balance.controller
+    soles = {Foot.LEFT: controller.robot.get_T_world_left(), Foot.RIGHT: controller.robot.get_T_world_right()}
+    stance = stance_frame(soles)
+    heading, torso = stance[:3, 0], stance[:3, 3] + [0.0, 0.0, 1.2]
+    leaning = Measurement(soles, None, ContactWrench(-100.0 * heading, torso))  # pushed back at the chest
+    for _ in range(int(2.0 / controller.dt)):
+        controller.tick(leaning)
+    com = np.array(controller.robot.com_world())
+    ahead = float(heading[:2] @ (com[:2] - stance[:2, 3]))
+    walking = world.profile.walking
+    assert ahead > walking.foot_length / 2 - world.config.gait.zmp_margin  # beyond where the ZMP may be
+    assert controller.walk(straight_plan(world, 0.1, 2), soles) > 0.0

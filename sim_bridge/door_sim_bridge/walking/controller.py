@@ -40,9 +40,14 @@ from door_sim_bridge.walking.dcm import CentreOfMassMotion, DcmFeedback
 from door_sim_bridge.walking.gait import GaitOptions, footstep_sequence, placo_parameters
 from door_sim_bridge.walking.model import PLACO_TRUNK_FRAME, joint_split, load_placo_robot
 from door_sim_bridge.walking.stabilizer import ContactWrench, Stabilizer, StabilizerOptions
+from door_sim_bridge.walking.support import into_polygon, support_polygon
 
-__all__ = ["BalanceMode", "Measurement", "WalkingController", "level_frame", "mean_yaw", "offset_in_stance",
+__all__ = ["START_INSET", "BalanceMode", "Measurement", "WalkingController", "level_frame", "mean_yaw", "offset_in_stance",
            "stance_frame", "supports_from", "yaw_rotation"]
+
+START_INSET = 0.005
+"""m a walk's starting CoM is kept inside the pattern's ZMP region (``zmp_margin`` in from the
+soles' edges), so that placo's QP starts strictly feasible."""
 
 
 class BalanceMode(str, Enum):
@@ -208,11 +213,12 @@ class WalkingController:
         self._generator = placo.WalkPatternGenerator(self.robot, parameters)
         supports = placo.FootstepsPlanner.make_supports(footsteps, 0.0, True, parameters.has_double_support(), True)
         com = np.array(self.robot.com_world())
+        start = self._pattern_start(com, feet_now)
         try:
-            trajectory = self._generator.plan(supports, com, 0.0)
+            trajectory = self._generator.plan(supports, start, 0.0)
         except RuntimeError as error:  # placo's QP found no pattern: a refused plan, not a bug
             raise SimulationError(f"the walking pattern generator found no CoM trajectory for {len(steps)} steps "
-                                  f"from the CoM at {offset_in_stance(com, feet_now)} ({error})") from error
+                                  f"from the CoM at {offset_in_stance(start, feet_now)} ({error})") from error
         if not trajectory.t_end > 0.0:
             raise SimulationError("the walking pattern generator found no CoM trajectory")
         self._trajectory, self._walk_time, self._stopping = trajectory, 0.0, False
@@ -221,6 +227,16 @@ class WalkingController:
         self.mode, self._support_side, self._anchor_foot = BalanceMode.WALKING, None, Foot.LEFT
         self._tasks.trunk_mode = False
         return float(trajectory.t_end)
+
+    def _pattern_start(self, com: np.ndarray, feet: Mapping[Foot, np.ndarray]) -> np.ndarray:
+        """The CoM the pattern starts from: ``com`` brought inside the double-support polygon
+        where the pattern's ZMP may be (:mod:`~door_sim_bridge.walking.support`)."""
+        walking = self.profile.walking
+        polygon = support_polygon(feet.values(), walking.foot_length, walking.foot_width,
+                                  self.gait.zmp_margin + START_INSET)
+        start = np.array(com, dtype=float)
+        start[:2] = into_polygon(start[:2], polygon)
+        return start
 
     def stop(self) -> None:
         """End the walk at the next stable stance (no-op when standing)."""
