@@ -12,7 +12,7 @@ from std_msgs.msg import String
 
 from door_bringup.bags.storage import BagWriter, StorageFormat
 from door_bringup.progress import ProgressPrinter, TaskProgress, progress_line
-from door_bringup.summary_data import handle_position, read_run, signed_margin, support_polygon
+from door_bringup.summary_data import handle_position, read_run
 from door_bringup.summary_figure import plot_summary
 from door_bringup.table_one import phase_of
 from door_contract.converters.footsteps import FootPlacement, footsteps_to_path
@@ -29,14 +29,6 @@ ESTIMATE = DoorEstimate(0.0, "odom", (0.0, -0.35, 0.95), (-1.0, 0.0, 0.0), Hinge
                         ((0.0, 0.457, 0.0), (0.0, -0.457, 0.0), (0.0, -0.457, 2.08), (0.0, 0.457, 2.08)),
                         1.0, 10, "automatic")
 SOLES = [FootPlacement(Foot.LEFT, -1.0, 0.085, 0.0), FootPlacement(Foot.RIGHT, -1.0, -0.085, 0.0)]
-
-
-def test_support_polygon_and_signed_margin():
-    polygon = support_polygon(SOLES, 0.22, 0.13)
-    np.testing.assert_allclose(sorted(polygon[:, 0]), [-1.11, -1.11, -0.89, -0.89])
-    np.testing.assert_allclose(signed_margin(np.array([-1.0, 0.0]), polygon), 0.11)  # 11 cm to the toe/heel
-    np.testing.assert_allclose(signed_margin(np.array([-1.0, 0.25]), polygon), -(0.25 - 0.15))
-    np.testing.assert_allclose(signed_margin(np.array([-0.79, 0.25]), polygon), -math.hypot(0.1, 0.1))
 
 
 @pytest.mark.parametrize("opening, sign", [("push", 1.0), ("pull", -1.0)])

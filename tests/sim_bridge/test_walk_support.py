@@ -1,4 +1,5 @@
-"""The double-support polygon a walk starts from (door_sim_bridge.walking.support): pure geometry."""
+"""The soles' support polygon (door_sim_bridge.walking.support): where a walk starts from, and the
+run summary's CoM margin. Pure geometry."""
 
 from __future__ import annotations
 
@@ -7,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from door_sim_bridge.walking.support import into_polygon, support_polygon
+from door_sim_bridge.walking.support import into_polygon, signed_margin, support_polygon
 
 LENGTH, WIDTH, MARGIN = 0.22, 0.14, 0.02
 
@@ -54,3 +55,12 @@ def test_staggered_turned_soles():
     front = into_polygon(np.array([1.0, 0.1]), polygon)
     assert front[0] > 0.15 + 0.5 * (LENGTH / 2 - MARGIN)  # reaches out to the leading sole's toe
     assert np.allclose(into_polygon(front, polygon), front)  # on the boundary: stays
+
+
+def test_signed_margin_is_the_distance_to_the_edge_positive_inside():
+    feet = (sole(-1.0, 0.085), sole(-1.0, -0.085))
+    polygon = support_polygon(feet, 0.22, 0.13)
+    assert sorted(polygon[:, 0]) == pytest.approx([-1.11, -1.11, -0.89, -0.89])
+    assert signed_margin(np.array([-1.0, 0.0]), polygon) == pytest.approx(0.11)  # 11 cm to the toe and heel
+    assert signed_margin(np.array([-1.0, 0.25]), polygon) == pytest.approx(-(0.25 - 0.15))
+    assert signed_margin(np.array([-0.79, 0.25]), polygon) == pytest.approx(-math.hypot(0.1, 0.1))

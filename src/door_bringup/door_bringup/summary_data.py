@@ -28,7 +28,6 @@ from typing import Any
 
 import numpy as np
 from rclpy.serialization import deserialize_message
-from scipy.spatial import ConvexHull
 
 from door_bringup.bags.storage import read_messages
 from door_contract.converters.footsteps import path_to_footsteps
@@ -41,10 +40,11 @@ from door_contract.topics import Topics
 from door_contract.vocabulary import TaskState
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
+from door_sim_bridge.walking.support import signed_margin, support_polygon
 from door_sim_bridge.world.door import HINGE_JOINT
 from door_viz.proposals import leaf_axes
 
-__all__ = ["Decoded", "RunSeries", "handle_position", "read_run", "signed_margin", "support_polygon"]
+__all__ = ["Decoded", "RunSeries", "handle_position", "read_run"]
 
 SAMPLE_PERIOD_S = 0.1  # s of sim time between samples of the robot's state
 
@@ -92,28 +92,6 @@ def _sim_time_of(clock: Decoded) -> Callable[[int], float]:
 
 def _json_payloads(messages: Decoded) -> list[dict]:
     return [json.loads(msg.data) for _, msg in messages if msg.data]
-
-
-def signed_margin(point: np.ndarray, polygon: np.ndarray) -> float:
-    """Distance (m) of ``point`` to the edge of a convex CCW ``polygon``: + inside, − outside."""
-    edges = np.roll(polygon, -1, axis=0) - polygon
-    normals = np.column_stack([-edges[:, 1], edges[:, 0]]) / np.linalg.norm(edges, axis=1)[:, None]
-    inside = np.einsum("ij,ij->i", normals, point - polygon)  # distance to each edge's line, + inside
-    if np.all(inside >= 0.0):
-        return float(inside.min())
-    t = np.clip(np.einsum("ij,ij->i", point - polygon, edges) / np.einsum("ij,ij->i", edges, edges), 0.0, 1.0)
-    return -float(np.min(np.linalg.norm(polygon + t[:, None] * edges - point, axis=1)))
-
-
-def support_polygon(soles: list, length: float, width: float) -> np.ndarray:
-    """Convex hull (CCW, (M, 2)) of the sole rectangles."""
-    corners = []
-    for sole in soles:
-        pose = planar_pose(sole.x, sole.y, sole.yaw)
-        for dx, dy in ((1, 1), (1, -1), (-1, -1), (-1, 1)):
-            corners.append((pose @ np.array([dx * length / 2, dy * width / 2, 0.0, 1.0]))[:2])
-    points = np.array(corners)
-    return points[ConvexHull(points).vertices]
 
 
 def handle_position(estimate: DoorEstimate, opening: str, hinge_angle: float) -> np.ndarray:
@@ -168,7 +146,8 @@ def _robot_state(bus: dict, robot_profile: str, odometry: dict, estimate: DoorEs
                 tcp = (base @ kinematics.frame_pose(q, profile.tcp_frame(side)))[:3, 3]
                 hands[side.value].append((t, float(np.linalg.norm(tcp - handle))))
         if key in feet:
-            polygon = support_polygon(feet[key], profile.walking.foot_length, profile.walking.foot_width)
+            soles = [planar_pose(sole.x, sole.y, sole.yaw) for sole in feet[key]]
+            polygon = support_polygon(soles, profile.walking.foot_length, profile.walking.foot_width)
             centre = (base @ np.append(kinematics.center_of_mass(q), 1.0))[:2]
             com.append((t, centre[0], centre[1], signed_margin(centre, polygon)))
             support.append(polygon)
