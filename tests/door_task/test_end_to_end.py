@@ -57,8 +57,10 @@ def _fell_safely_or_done(report) -> None:
 
 def _walk_through_done(report) -> None:
     """Known gap (issue #11): on the physical robot the walk through the doorway, where the
-    body shoves the 25 kg leaf (push) or passes it on the blocking hand (pull), falls in most
-    runs; every phase before it succeeds. Reported as xfail until it does not."""
+    body shoves the 25 kg leaf (push) or passes it on the blocking hand (pull), still falls in
+    some runs (the full-range Monte-Carlo: 44 of 50 doors DONE, every failure but one a fall
+    walking through; these two doors reached DONE in stop 29's suite); every phase before it
+    succeeds. Reported as xfail, not a failure, until the campaign reaches issue #11's 98 %."""
     if report["final_state"] != "DONE":
         pytest.xfail(f"walk-through on the physical robot (issue #11): {report['failure_reason']}")
 
