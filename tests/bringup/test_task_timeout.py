@@ -19,9 +19,10 @@ def test_a_run_without_a_report_ends_after_its_timeout_of_robot_time(workspace, 
     supervisor = ProcessSupervisor(workspace, tmp_path)
     rclpy.init()
     operator = ScriptedOperator(approve=False)
+    started = time.monotonic()  # before the sim's clock starts: the robot's time cannot outrun this
     try:
-        supervisor.start(sim_bridge, ["-p", "camera_rate:=0.0"])  # no FSM: no report ever comes
-        started = time.monotonic()
+        # no FSM: no report ever comes; paced so that its clock never runs ahead of the wall clock
+        supervisor.start(sim_bridge, ["-p", "camera_rate:=0.0", "-p", "real_time:=true"])
         report = _wait_for_report(operator, supervisor, timeout_s=3.0)
         waited = time.monotonic() - started
     finally:
@@ -30,5 +31,5 @@ def test_a_run_without_a_report_ends_after_its_timeout_of_robot_time(workspace, 
         rclpy.try_shutdown()
     assert report["final_state"] == "FAILED" and report["attempts"] == []
     assert report["failure_reason"] == "no TaskReport within 3 s of the robot's time", report
-    assert operator.robot_time_s > 3.0 and waited >= 3.0  # the sim runs at most in real time
+    assert operator.robot_time_s > 3.0 and waited >= 3.0  # paced: at most real time
     assert codes == {"sim_bridge": 0}
