@@ -202,7 +202,9 @@ class StateAttempt:
     ``state`` is spelled by its label in JSON (``OPEN_DOOR/TURN_HANDLE`` for a sub-state: its
     phase first), as ``/door_task/state`` publishes it and old ``report.json`` / ``trial.json``
     files hold it; ``attempt`` is 1 for the first try. Planning and waiting for the operator are
-    measured on the wall clock, moving on the robot clock (``TaskReport.clocks``).
+    measured on the wall clock, moving on the robot clock (``TaskReport.clocks``); ``robot_s`` is
+    the attempt from entry to outcome on the robot clock (0 while unfinished, and in reports
+    written before it existed).
     """
 
     state: TaskState
@@ -213,6 +215,7 @@ class StateAttempt:
     moving_s: float = 0.0
     reason: str = ""
     summary: ProposalSummary = dataclasses.field(default_factory=dict)
+    robot_s: float = 0.0
 
 
 @dataclasses.dataclass(frozen=True)

@@ -47,6 +47,16 @@ def test_overhead_is_the_median_of_the_runs_planning_and_detection():
     assert "median 3.00 s" in line and "min 1.50 s" in line and "max 6.00 s" in line
     assert "detection median 2.00 s" in line and line.endswith("missed")
     assert overhead_line([_report("push", True, 0.5, 0.5)]).endswith("met")
+    assert "robot clock" not in line  # reports written before robot_s: no latency claimed
+
+
+def test_the_detection_latency_is_the_median_of_detect_doors_robot_time():
+    reports = [_report("push", True, 9.0, 0.5), _report("pull", True, 7.0, 0.5), _report("push", True, 8.0, 0.5)]
+    for report, robot_s in zip(reports, (0.4, 0.9, 2.5)):
+        report["attempts"][0]["robot_s"] = robot_s
+    line = overhead_line(reports)
+    assert "detection median 8.00 s" in line  # wall clock
+    assert line.endswith("robot clock median 0.90 s (max 2.50 s), target ≤ 0.5 s missed")
 
 
 def test_summary_counts_each_opening_and_names_the_failures():

@@ -67,27 +67,28 @@ def test_payload_round_trip():
 
 def test_a_task_report_lists_typed_state_attempts_and_its_json_stays_an_object_per_attempt():
     attempts = (StateAttempt(TaskState.DETECT_DOOR, 1, AttemptOutcome.SUCCEEDED, 0.4, 2.0, 0.0, "",
-                             {"width_m": 0.914, "hinge": "left"}),
+                             {"width_m": 0.914, "hinge": "left"}, robot_s=0.75),
                 StateAttempt(TaskState.TURN_HANDLE, 2, AttemptOutcome.UNFINISHED, 0.1))
     report = TaskReport(TaskEnd.FAILED, "aborted", DoorOpening.PUSH, Autonomy.FULL, attempts, "wall")
     text = encode(report)
     assert decode(TaskReport, text) == report
     first, second = json.loads(text)["attempts"]
     assert first == {"state": "DETECT_DOOR", "attempt": 1, "outcome": "succeeded", "planning_s": 0.4,
-                     "waiting_s": 2.0, "moving_s": 0.0, "reason": "", "summary": {"width_m": 0.914, "hinge": "left"}}
+                     "waiting_s": 2.0, "moving_s": 0.0, "reason": "", "summary": {"width_m": 0.914, "hinge": "left"},
+                     "robot_s": 0.75}
     assert second["state"] == "OPEN_DOOR/TURN_HANDLE"  # the label, as /door_task/state publishes it
     assert encode_document(attempts[1]) == second
 
 
 def test_an_attempt_of_an_old_report_file_reads_back_typed():
     """Campaigns resume from the trial.json / report.json files they wrote: an object per
-    attempt, its state a label."""
+    attempt, its state a label; one written before ``robot_s`` existed reads back with 0."""
     old = {"state": "WALK_THROUGH/TUCK", "attempt": 1, "outcome": "fell", "planning_s": 0.3, "waiting_s": 0.0,
            "moving_s": 2.5, "reason": "the robot fell: tilt", "summary": {"cost": 1.5, "backend": "sqp"}}
     attempt = decode_document(StateAttempt, old)
     assert attempt.state is TaskState.TUCK and attempt.outcome is AttemptOutcome.FELL
     assert attempt.summary == {"cost": 1.5, "backend": "sqp"}
-    assert encode_document(attempt) == old
+    assert attempt.robot_s == 0.0 and encode_document(attempt) == {**old, "robot_s": 0.0}
 
 
 @pytest.mark.parametrize("state, match", [

@@ -257,10 +257,10 @@ def write_report(run_dir: Path, options: TaskOptions, report: dict) -> str:
     lines = [f"# Door task run {run_dir.name}", "", f"Final state: **{report['final_state']}**"
              + (f" — {report['failure_reason']}" if report.get("failure_reason") else ""), "",
              f"Wall time: {report.get('wall_time_s', 0):.1f} s; autonomy {options.autonomy}; backend {options.backend}",
-             "", table, "", f"Times: {report.get('clocks') or 'see docs/CLOCKS.md'}.", "", "## State attempts", "", "| state | attempt | outcome | planning | moving | reason |",
-             "|---|---|---|---|---|---|"]
+             "", table, "", f"Times: {report.get('clocks') or 'see docs/CLOCKS.md'}.", "", "## State attempts", "", "| state | attempt | outcome | planning | moving | robot time | reason |",
+             "|---|---|---|---|---|---|---|"]
     for a in state_attempts(report):
-        lines.append(f"| {a.state.label} | {a.attempt} | {a.outcome} | {a.planning_s:.3f} s | {a.moving_s:.1f} s | {a.reason} |")
+        lines.append(f"| {a.state.label} | {a.attempt} | {a.outcome} | {a.planning_s:.3f} s | {a.moving_s:.1f} s | {a.robot_s:.2f} s | {a.reason} |")
     text = "\n".join(lines) + "\n"
     (run_dir / "report.md").write_text(text)
     (run_dir / "report.json").write_text(json.dumps({"options": options.__dict__, **report}, indent=2, default=str))

@@ -181,7 +181,9 @@ class DoorTaskMachine:
     def _close_phase(self, now: Instant) -> None:
         if self.phase is None or not self.records:
             return
-        self.records[-1].add(self.phase, now.on(PHASE_CLOCK[self.phase]) - self._phase_started)
+        ended = now.on(PHASE_CLOCK[self.phase])
+        self.records[-1].add(self.phase, ended - self._phase_started)
+        self._phase_started = ended  # closing twice counts once: a detection finishes in the call that closed its planning
 
     def _leave_early(self, reason: str) -> list[act.Action]:
         """Leaving the phase before its answer: cancel its planner request, stop its motion."""
@@ -197,7 +199,7 @@ class DoorTaskMachine:
     def _finish(self, outcome: StateOutcome, now: Instant, reason: str = "") -> list[act.Action]:
         self._close_phase(now)
         if self.records and self.records[-1].state is self.state:
-            self.records[-1].outcome, self.records[-1].reason = outcome, reason
+            self.records[-1].conclude(outcome, reason, now)
         following = self.wiring[(self.state, outcome)]
         if outcome is StateOutcome.SLIPPED:
             self._slips += 1
@@ -213,7 +215,7 @@ class DoorTaskMachine:
         actions = self._leave_early(reason)
         self._close_phase(now)
         if self.work is not None and self.records:
-            self.records[-1].outcome, self.records[-1].reason = outcome, reason
+            self.records[-1].conclude(outcome, reason, now)
         self.failure_reason = f"{self.state.label}: {reason}"
         return actions + self._enter(TaskState.FAILED, now, reason)
 
@@ -222,7 +224,7 @@ class DoorTaskMachine:
         if self._repeats[self.state] > self.options.max_repeats:
             return self._finish(outcome, now, f"{reason} (after {self.options.max_repeats} repeats)")
         self._close_phase(now)
-        self.records[-1].outcome, self.records[-1].reason = outcome, reason
+        self.records[-1].conclude(outcome, reason, now)
         return self._enter(self.state, now, f"repeat {self._repeats[self.state]}: {reason}")
 
     # ------------------------------------------------------------------ answers
@@ -291,7 +293,7 @@ class DoorTaskMachine:
         reason = f"{word} by the operator"
         actions = self._leave_early(reason)
         self._close_phase(now)
-        self.records[-1].outcome, self.records[-1].reason = StateOutcome.FAILED, reason
+        self.records[-1].conclude(StateOutcome.FAILED, reason, now)
         return actions + self._enter(self.state, now, reason)
 
     def _suspend(self, target: TaskState, reason: str, now: Instant) -> list[act.Action]:

@@ -76,6 +76,7 @@ class StateRecord:
     moving_s: float = 0.0    # robot clock
     reason: str = ""
     summary: ProposalSummary = field(default_factory=dict)
+    robot_s: float = 0.0     # robot clock, entry to outcome (set by :meth:`conclude`)
 
     def add(self, phase: Phase, seconds: float) -> None:
         if phase is Phase.PLANNING:
@@ -85,14 +86,22 @@ class StateRecord:
         else:
             self.moving_s += seconds
 
+    def conclude(self, outcome: StateOutcome, reason: str, now: Instant) -> None:
+        """The attempt's outcome, and its length on the robot clock: for DETECT_DOOR the
+        detection latency in sim time, whatever the machine's load (issue #15's ≤ 0.5 s)."""
+        self.outcome, self.reason = outcome, reason
+        self.robot_s = max(0.0, now.robot - self.started.robot)
+
     def as_state_attempt(self) -> StateAttempt:
         """This attempt as the TaskReport lists it (times rounded to 0.1 ms; unfinished while
         the state has no outcome)."""
         outcome = AttemptOutcome(self.outcome.value) if self.outcome else AttemptOutcome.UNFINISHED
         return StateAttempt(self.state, self.attempt, outcome, round(self.planning_s, 4),
-                            round(self.waiting_s, 4), round(self.moving_s, 4), self.reason, dict(self.summary))
+                            round(self.waiting_s, 4), round(self.moving_s, 4), self.reason, dict(self.summary),
+                            round(self.robot_s, 4))
 
 
 def clocks_note(robot_clock: str) -> str:
     """What the TaskReport's times are measured on; ``robot_clock`` is "sim" or "wall"."""
-    return f"planning_s, waiting_s: wall clock (steady); moving_s: robot clock ({robot_clock} time)"
+    return (f"planning_s, waiting_s: wall clock (steady); moving_s, robot_s: robot clock "
+            f"({robot_clock} time)")
