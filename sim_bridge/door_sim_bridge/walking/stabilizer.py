@@ -67,8 +67,12 @@ class StabilizerOptions:
     max_walking_force: float = 40.0  # N, the same while walking (a pushed leaf escapes the hand)
     # CoM target shift per m of DCM error while walking (door_sim_bridge.walking.dcm). Rig, push
     # left walked there from 2.5 m, 4 doors: 0 → 0/4 through, 0.5 → 1/4 (prototype), 1.5 → 3/4
-    # (prototype) and 2/4 (this module), 2.5 → fell on the first (issue #11)
-    dcm_gain: float = 1.5
+    # (prototype) and 2/4 (this module), 2.5 → fell on the first (issue #11, stop 27). The
+    # narrow push doors that fell in the full-range campaigns (0.80 m, side-stepping with the
+    # back on the leaf: the closer pushes the robot towards the latch, the feedback leans it back
+    # onto a leaf that then gives way), same rig doors (stop 30): 1.5 → 0/6 through, 0.75 → 6/8,
+    # 0.5 → 2/4; shift clipped to 0.02 m at 1.5 → 0/4. Pull doors at 0.75: 4/4.
+    dcm_gain: float = 0.75
     max_dcm_shift: float = 0.04  # m per axis
 
     def __post_init__(self) -> None:
