@@ -217,8 +217,9 @@ class WalkingController:
         try:
             trajectory = self._generator.plan(supports, start, 0.0)
         except RuntimeError as error:  # placo's QP found no pattern: a refused plan, not a bug
+            moved = "" if np.allclose(start[:2], com[:2]) else f", brought in from {offset_in_stance(com, feet_now)}"
             raise SimulationError(f"the walking pattern generator found no CoM trajectory for {len(steps)} steps "
-                                  f"from the CoM at {offset_in_stance(start, feet_now)} ({error})") from error
+                                  f"from the CoM at {offset_in_stance(start, feet_now)}{moved} ({error})") from error
         if not trajectory.t_end > 0.0:
             raise SimulationError("the walking pattern generator found no CoM trajectory")
         self._trajectory, self._walk_time, self._stopping = trajectory, 0.0, False
