@@ -63,7 +63,8 @@ class SimBridgeNode(Node):
         p = declare_parameters(self, BRIDGE_PARAMETERS)
         with as_parameter_error("simulation", SimulationError, RobotModelError):
             self.world = DoorWorld(world_config(p))
-        rates = PublicationRates(p["clock_rate"], p["state_rate"], p["tf_rate"], p["camera_rate"])
+        rates = PublicationRates(p["clock_rate"], p["state_rate"], p["tf_rate"], p["camera_rate"],
+                                 p["camera_rate_standing"])
         self.loop = SimulationLoop(self.world, DeadMan(p["supervisor_timeout"], p["supervisor_node"]), rates,
                                    p["real_time"], time.monotonic())
         self.heartbeat = Heartbeat(self)

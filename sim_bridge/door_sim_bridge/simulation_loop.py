@@ -31,7 +31,7 @@ from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatu
 from door_contract.vocabulary import Side
 from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.execution import Execution
-from door_sim_bridge.schedule import Schedule
+from door_sim_bridge.schedule import FrameSchedule, Schedule
 from door_sim_bridge.world import DoorWorld
 
 __all__ = ["STEPS_PER_TICK", "LoopReport", "PublicationRates", "Running", "SimulationLoop", "Stop",
@@ -52,16 +52,22 @@ class Stream(str, Enum):
 
 @dataclass(frozen=True)
 class PublicationRates:
-    """Rates (Hz, simulated time) of the streams; 0 turns a stream off."""
+    """Rates (Hz, simulated time) of the streams; 0 turns a stream off. The camera's is its rate
+    while the robot walks; ``camera_standing`` its rate otherwise (0: the same)."""
 
     clock: float
     state: float
     tf: float
     camera: float
+    camera_standing: float = 0.0
 
     def of(self, stream: Stream) -> float:
         rate: float = getattr(self, stream.value)
         return rate
+
+    def camera_frames(self) -> FrameSchedule:
+        """The camera's schedule (its rate must be > 0)."""
+        return FrameSchedule(self.camera, self.camera_standing or self.camera)
 
 
 class TickStage(str, Enum):
@@ -145,7 +151,9 @@ class SimulationLoop:
         """``real_time``: never run the simulated clock ahead of the wall clock (``wall_start``:
         the wall time, s, of simulated time 0)."""
         self.world, self.deadman, self.real_time, self.wall_start = world, deadman, real_time, wall_start
-        self._schedules = {stream: Schedule(rates.of(stream)) for stream in Stream if rates.of(stream) > 0}
+        self._schedules = {stream: Schedule(rates.of(stream)) for stream in Stream
+                           if rates.of(stream) > 0 and stream is not Stream.CAMERA}
+        self._camera = rates.camera_frames() if rates.camera > 0 else None
         self.running: Running | None = None
         self.fault_count = 0
         self.last_fault: TickFault | None = None
@@ -233,8 +241,12 @@ class SimulationLoop:
         return LoopReport(tuple(outcomes), self._new(faults), stop)
 
     def due(self, now: float) -> tuple[Stream, ...]:
-        """The streams due at ``now`` (each is then scheduled for its next period)."""
-        return tuple(stream for stream, schedule in self._schedules.items() if schedule.due(now))
+        """The streams due at ``now`` (each is then scheduled for its next period; the camera's
+        period is that of the robot's activity: :class:`~door_sim_bridge.schedule.FrameSchedule`)."""
+        streams = tuple(stream for stream, schedule in self._schedules.items() if schedule.due(now))
+        walking = self.running is not None and self.running.kind is ExecutionKind.FOOTSTEPS
+        camera = self._camera is not None and self._camera.due(now, walking)
+        return (*streams, Stream.CAMERA) if camera else streams
 
     def status(self, wall_now: float) -> dict[str, object]:
         """The figures of the bridge's heartbeat."""

@@ -147,7 +147,8 @@ def test_no_trials_or_no_jobs_is_refused_before_anything_runs(argv):
 def _recorded(folder, **changed) -> None:
     """A Monte-Carlo folder as ``main`` writes it with its defaults (and ``changed``)."""
     settings = {"robot": "talos", "trials": 50, "seed": 0, "autonomy": "full", "camera_rate": 2.0,
-                "openings": ["pull", "push"], "timeout": 600.0, "ranges": "full", **changed}
+                "camera_rate_standing": 8.0, "openings": ["pull", "push"], "timeout": 600.0, "ranges": "full",
+                **changed}
     (folder / SETTINGS_FILE).write_text(json.dumps(settings))
 
 
@@ -173,3 +174,18 @@ def test_the_robot_is_in_the_settings_and_in_every_trial(tmp_path):
     assert json.loads((out / SETTINGS_FILE).read_text())["robot"] == "g1"
     trials = draw_trials(np.random.default_rng(1), TaskOptions(robot="g1"), 3, ["push", "pull"])
     assert {trial.robot for trial in trials} == {"g1"}
+
+
+def test_a_folder_from_before_the_standing_camera_rate_resumes_only_with_the_one_rate(tmp_path):
+    _recorded(tmp_path)
+    settings = json.loads((tmp_path / SETTINGS_FILE).read_text())
+    del settings["camera_rate_standing"]  # written before it: the camera ran at camera_rate throughout
+    (tmp_path / SETTINGS_FILE).write_text(json.dumps(settings))
+    assert _run_folder(Workspace(tmp_path), tmp_path, {**settings, "camera_rate_standing": 0.0}) == tmp_path
+    with pytest.raises(ResumeError, match=r"\(camera_rate_standing\)"):
+        _run_folder(Workspace(tmp_path), tmp_path, {**settings, "camera_rate_standing": 8.0})
+
+
+def test_the_camera_rates_reach_the_sim_bridge():
+    overrides = TaskOptions(camera_rate=2.0, camera_rate_standing=6.0).node_overrides()["sim_bridge"]
+    assert "camera_rate:=2.0" in overrides and "camera_rate_standing:=6.0" in overrides

@@ -99,6 +99,20 @@ def test_each_tick_steps_the_physics_and_publishes_what_is_due_at_its_simulated_
     assert publish.count(Stream.TF) == 0  # rate 0: off
 
 
+def test_the_camera_renders_faster_while_the_robot_does_not_walk(world):
+    """Frames at ``camera_standing`` Hz standing or moving an arm, at ``camera`` Hz while a
+    footstep plan executes (what the loop knows of walking is the execution's kind)."""
+    _start_over(world)
+    rates = PublicationRates(clock=100.0, state=50.0, tf=0.0, camera=2.0, camera_standing=8.0)
+    loop, publish = SimulationLoop(world, DeadMan(0.0), rates, False, 0.0), Published()
+    _run(loop, publish, 60)  # 1 s standing
+    assert publish.count(Stream.CAMERA) in (8, 9)
+    loop.submit(ExecutionKind.FOOTSTEPS, 21, _move_arm(np.zeros(4), duration=2.0))
+    walking = Published()
+    _run(loop, walking, 60)  # 1 s of the "walk"
+    assert loop.running is not None and walking.count(Stream.CAMERA) in (2, 3)
+
+
 def test_one_execution_at_a_time_and_its_outcome_when_it_ends(world):
     _start_over(world)
     loop, publish = _loop(world), Published()

@@ -34,7 +34,7 @@ from pathlib import Path
 import numpy as np
 
 from door_bringup.domains import lease_domain
-from door_bringup.door_task import TaskOptions, run_task
+from door_bringup.door_task import TaskOptions, add_camera_arguments, run_task
 from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm
 from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.table_one import format_table, phase_of, phase_rows, state_attempts
@@ -68,7 +68,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--trials", type=int, default=50)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--autonomy", choices=("full", "supervised", "step"), default="full")
-    parser.add_argument("--camera-rate", type=float, default=2.0, help="head camera frames per second of sim time")
+    add_camera_arguments(parser)
     parser.add_argument("--openings", nargs="+", choices=("push", "pull"), default=["push", "pull"])
     parser.add_argument("--timeout", type=float, default=600.0,
                         help="per trial, s of the robot's time (sim time; 5x that of wall time as a safety net)")
@@ -88,14 +88,14 @@ def main(argv: list[str] | None = None) -> int:
     interrupt_on_sigterm()
     workspace = Workspace(repository_root())
     settings = {"robot": args.robot, "trials": args.trials, "seed": args.seed, "autonomy": args.autonomy,
-                "camera_rate": args.camera_rate, "openings": sorted(args.openings), "timeout": args.timeout,
+                "camera_rate": args.camera_rate, "camera_rate_standing": args.camera_rate_standing, "openings": sorted(args.openings), "timeout": args.timeout,
                 "ranges": args.ranges}
     try:
         out = _run_folder(workspace, args.resume, settings)
     except ResumeError as error:
         parser.error(str(error))
     base = TaskOptions(robot=args.robot, autonomy=args.autonomy, timeout_s=args.timeout, record=False,
-                       camera_rate=args.camera_rate)
+                       camera_rate=args.camera_rate, camera_rate_standing=args.camera_rate_standing)
     trials = draw_trials(np.random.default_rng(args.seed), base, args.trials, args.openings,
                          ranges_named(RangeSet(args.ranges)))
     try:
@@ -147,9 +147,10 @@ class ResumeError(Exception):
 
 
 SETTINGS_FILE = "monte_carlo.json"
-RECORDED_BEFORE = {"robot": "talos", "ranges": RangeSet.NARROW.value}
+RECORDED_BEFORE = {"robot": "talos", "ranges": RangeSet.NARROW.value, "camera_rate_standing": 0.0}
 """What a setting a folder does not record was: folders written before ``--robot`` ran TALOS,
-before ``--ranges`` the narrow ranges."""
+before ``--ranges`` the narrow ranges, before ``--camera-rate-standing`` the camera's one rate
+throughout (the sim bridge's 0: resumed with ``--camera-rate-standing 0``)."""
 TRIAL_FILE = "trial.json"
 
 
