@@ -292,3 +292,35 @@ def test_sideways_the_hinge_side_hand_opens_a_push_door_and_holds_it_with_the_ar
         for frame in arm:  # inside the doorway, short of the latch-side post's face
             point = chain.point_and_jacobian(q, frame)[0]
             assert (point - setup.door.hinge_point) @ along < limit, frame
+
+
+def test_sideways_ready_to_walk_starts_from_a_guess_on_the_leaf_and_inside_the_doorway():
+    """The push passage's ready_to_walk (sideways stance, the benchmark's door): its initial
+    guess turns the torso back while the hand slides along the leaf, so every waypoint is on
+    the leaf with the hand's orientation and the arm ends inside the doorway; the SQP then only
+    polishes (it took 28 iterations from a guess that held the arm 0.21 m outside, issue #15)."""
+    from door_evaluation.trajopt.benchmark_motions import DOOR_WIDTH, scenarios
+    from door_trajopt.chain import ArmChain
+    from door_trajopt.constraints import ConstraintStack
+    from door_trajopt.motions import MotionSetup, support_polygon
+    from door_trajopt.problem import ConstraintKind
+
+    kinematics = talos_kinematics()
+    scenario = next(s for s in scenarios(kinematics) if s.name == "push, sideways")
+    library, body_q, angle = MotionLibrary(), kinematics.nominal_q.copy(), 0.0
+    for motion in scenario.sequence:
+        chain = ArmChain(kinematics, scenario.hand, body_q)
+        setup = MotionSetup(chain, scenario.door, DOOR_WIDTH, support_polygon(chain),
+                            start_door_for(motion, angle, library.options))
+        if motion is Motion.READY_TO_WALK:
+            built = build_motion(motion, setup, chain.chain_of(body_q), library.options)
+            for kind in ConstraintKind:
+                stack = ConstraintStack.of_kind(built.problem, kind)
+                violations = stack.violations(stack.values(built.initial_guess))
+                named = {stack.block_name(row) for row in np.flatnonzero(violations > 1e-3)}
+                assert not named & {"on_leaf", "hand_orientation", "arm_in_doorway"}, named
+        plan = library.plan(motion, setup, chain.chain_of(body_q), Backend.SQP)
+        assert plan.succeeded, (motion, plan.result.message)
+        body_q, angle = chain.full(plan.result.trajectory[-1, :chain.size]), plan.final_door[0]
+        library.clear_cache()
+    assert plan.result.iterations <= 15

@@ -564,29 +564,46 @@ def _door_stop_beside(setup: MotionSetup, start_chain: np.ndarray, options: Moti
         waypoint_constraint("arm_in_doorway", ConstraintKind.INEQUALITY, _along_wall_below(setup, frames, limit),
                             len(frames), [n - 1], m, n)]
     problem = _problem(setup, start_chain, options, (False, False), constraints)
-    end_chain = _beside_end_guess(setup, start_chain, start_tcp, frames, limit)
-    guess = _through_keys(problem, [(0, start_chain), (n - 1, end_chain)], setup.start_door)
-    return MotionProblem(problem, guess, setup.chain)
+    guess = _beside_guess(setup, start_chain, start_tcp, frames, limit, n)
+    return MotionProblem(problem, np.hstack([guess, np.tile(setup.start_door, (n, 1))]), setup.chain)
 
 
-BESIDE_SLIDES = (0.10, 0.15, 0.20, 0.25)
-"""How far (m) the initial guess slides the hand along the leaf towards the hinge, tried in turn."""
+BESIDE_SLIDES = ((0.20, 0.10), (0.30, 0.15), (0.35, 0.20), (0.40, 0.25))
+"""(along the leaf towards the hinge, up) m the initial guess slides the hand, tried in turn
+(the optimiser's own answer on the benchmark's door: 0.31 m along, 0.16 m up)."""
 
 
-def _beside_end_guess(setup: MotionSetup, start_chain: np.ndarray, start_tcp: np.ndarray,
-                      frames: tuple[str, ...], limit: float) -> np.ndarray:
-    """An end posture for :func:`_door_stop_beside`'s initial guess: IK of the hand slid along
-    the leaf towards the hinge (:data:`BESIDE_SLIDES`), the first that brings every frame
-    within ``limit`` along the wall; the start when none does."""
+def _beside_guess(setup: MotionSetup, start_chain: np.ndarray, start_tcp: np.ndarray,
+                  frames: tuple[str, ...], limit: float, n: int) -> np.ndarray:
+    """(n, k) initial guess of :func:`_door_stop_beside`: the torso turned and raised back to
+    the nominal posture while the hand slides along the leaf (towards the hinge and up, its
+    orientation and distance from the leaf held: the arm alone solves each waypoint's IK from
+    the previous one). Every waypoint then meets the equalities and the end the doorway bound,
+    and the optimiser only polishes: with the torso left where the push left it (pitched
+    0.79 rad towards the door) no slide brought the shoulder inside the doorway, the guess
+    held still 0.21 m outside it, and the SQP took 28 iterations (207 ms CPU against the
+    100 ms target) while CHOMP failed. The first of :data:`BESIDE_SLIDES` whose IK converges
+    and whose end is inside; the arm held still when none is."""
     towards_hinge = -(setup.door.leaf_rotation(setup.start_door[0]) @ setup.door.along)
     inside = _along_wall_below(setup, frames, limit)
-    for slide in BESIDE_SLIDES:
-        target = start_tcp.copy()
-        target[:3, 3] += slide * towards_hinge
-        end = _ik(setup.chain, target, start_chain)
-        if np.max(inside(np.concatenate([end, setup.start_door]), False)[0]) <= 0.0:
-            return end
-    return start_chain
+    shared = len(_shared_with_other_arm(setup.chain))
+    torso_start, torso_end = start_chain[:shared], setup.chain.chain_of(setup.chain.kinematics.nominal_q)[:shared]
+    for along, up in BESIDE_SLIDES:
+        path, converged = [start_chain], True
+        for t in range(1, n):
+            fraction = t / (n - 1)
+            target = start_tcp.copy()
+            target[:3, 3] += fraction * (along * towards_hinge + np.array([0.0, 0.0, up]))
+            torso = torso_start + fraction * (torso_end - torso_start)
+            arm = ArmChain(setup.chain.kinematics, setup.chain.side,
+                           setup.chain.full(np.concatenate([torso, path[-1][shared:]])),
+                           setup.chain.joint_names[shared:])
+            solution = solve_ik(arm, target, path[-1][shared:], IkOptions(max_iterations=60))
+            converged &= solution.converged
+            path.append(np.concatenate([torso, solution.chain_q]))
+        if converged and np.max(inside(np.concatenate([path[-1], setup.start_door]), False)[0]) <= 0.0:
+            return np.array(path)
+    return np.tile(start_chain, (n, 1))
 
 
 def _leaf_plane_distance(setup: MotionSetup, distance: float) -> WaypointFunction:
