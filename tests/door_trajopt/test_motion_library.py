@@ -324,3 +324,29 @@ def test_sideways_ready_to_walk_starts_from_a_guess_on_the_leaf_and_inside_the_d
         body_q, angle = chain.full(plan.result.trajectory[-1, :chain.size]), plan.final_door[0]
         library.clear_cache()
     assert plan.result.iterations <= 15
+
+
+@pytest.mark.parametrize("lever_height", [0.87, 0.88])
+def test_sideways_a_low_lever_is_grasped_with_room_left_to_turn_it(lever_height):
+    """The approach's key pose is the IK solution farthest from the joint limits: the first one
+    found put TALOS's shoulder roll at its limit for a lever at 0.87-0.88 m (sideways stance),
+    and no turn was feasible from that grasp (closed chain off by 7.9 cm; a full-range
+    Monte-Carlo door failed its four TURN_HANDLE attempts so)."""
+    from door_evaluation.trajopt.benchmark_motions import DOOR_WIDTH, scenarios
+    from door_trajopt.chain import ArmChain
+    from door_trajopt.door_model import DoorModel
+    from door_trajopt.motions import MotionSetup, support_polygon
+
+    kinematics = talos_kinematics()
+    scenario = next(s for s in scenarios(kinematics) if s.name == "push, sideways")
+    drop = np.array([0.0, 0.0, lever_height - 0.91])
+    door = DoorModel(scenario.door.grasp_point + drop, scenario.door.normal, scenario.door.hinge_point + drop,
+                     push=True)
+    library, body_q, angle = MotionLibrary(), kinematics.nominal_q.copy(), 0.0
+    for motion in (Motion.APPROACH_HANDLE, Motion.TURN_HANDLE):
+        chain = ArmChain(kinematics, scenario.hand, body_q)
+        setup = MotionSetup(chain, door, DOOR_WIDTH, support_polygon(chain), start_door_for(motion, angle, library.options))
+        plan = library.plan(motion, setup, chain.chain_of(body_q), Backend.SQP)
+        assert plan.succeeded, (motion, plan.result.message, plan.result.violated_constraint)
+        body_q, angle = chain.full(plan.result.trajectory[-1, :chain.size]), plan.final_door[0]
+        library.clear_cache()
