@@ -680,19 +680,29 @@ def _within_limits(problem: TrajectoryProblem, chain_q: np.ndarray) -> np.ndarra
 
 
 def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
-    """A key pose: of the IK solutions from ``seed``, the nominal posture and 6 random seeds, the
-    converged one farthest from its joints' limits (:func:`_limit_margin`), else the closest.
-    The first converged one had been taken: on the sideways push stance with the lever at
-    0.87-0.88 m it put the shoulder roll at its limit and the torso pitch 0.05 rad from its stop,
-    and no turn of the handle was feasible from that grasp (a Monte-Carlo door failed so)."""
+    """A key pose: the first IK solution (from ``seed``, the nominal posture, then 6 random
+    seeds) that keeps :data:`KEY_POSE_MARGIN` from every joint limit (:func:`_limit_margin`),
+    else the converged one farthest from them, else the closest. The first converged one had
+    been taken: on the sideways push stance with the lever at 0.87-0.88 m it put the shoulder
+    roll at its limit and the torso pitch 0.05 rad from its stop, and no turn of the handle
+    was feasible from that grasp (a Monte-Carlo door failed so)."""
     rng = np.random.default_rng(0)
     seeds = [seed, chain.chain_of(chain.kinematics.nominal_q)] + [rng.uniform(chain.lower, chain.upper)
                                                                   for _ in range(6)]
-    solutions = [solve_ik(chain, target, start, mask=mask) for start in seeds]
-    converged = [solution.chain_q for solution in solutions if solution.converged]
+    converged: list[np.ndarray] = []
+    for start in seeds:
+        solution = solve_ik(chain, target, start, mask=mask)
+        if solution.converged:
+            if _limit_margin(chain, solution.chain_q) >= KEY_POSE_MARGIN:
+                return solution.chain_q
+            converged.append(solution.chain_q)
     if converged:
         return max(converged, key=lambda q: _limit_margin(chain, q))
     return solve_ik_multistart(chain, target, seeds, mask=mask).chain_q
+
+
+KEY_POSE_MARGIN = 0.05
+"""rad from every joint limit that makes an IK key pose good enough to take at once."""
 
 
 def _limit_margin(chain: ArmChain, chain_q: np.ndarray) -> float:
