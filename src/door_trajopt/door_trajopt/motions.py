@@ -685,7 +685,9 @@ def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray 
     else the converged one farthest from them, else the closest. The first converged one had
     been taken: on the sideways push stance with the lever at 0.87-0.88 m it put the shoulder
     roll at its limit and the torso pitch 0.05 rad from its stop, and no turn of the handle
-    was feasible from that grasp (a Monte-Carlo door failed so)."""
+    was feasible from that grasp. That fixed the left hand only: the right hand's mirrored
+    doors still find no turn at 0.87-0.88 m, whatever key pose is chosen (a Monte-Carlo door
+    failed so), for a reason not yet found."""
     rng = np.random.default_rng(0)
     seeds = [seed, chain.chain_of(chain.kinematics.nominal_q)] + [rng.uniform(chain.lower, chain.upper)
                                                                   for _ in range(6)]
