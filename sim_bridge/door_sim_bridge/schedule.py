@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 __all__ = ["FrameSchedule", "Schedule"]
 
 
@@ -27,19 +29,21 @@ class FrameSchedule:
     walks, every 1/``standing_hz`` otherwise. Rendering is the simulation's dearest work
     (~0.14 s of CPU per VGA frame against ~0.2 s per simulated second of walking physics), and
     the detector works while the robot stands: DETECT_DOOR confirms a door from 2-4 agreeing
-    frames, so its latency is a few frame periods (issue #15). A frame is due once a period
-    has passed since the last, the period of the robot's current activity."""
+    frames, so its latency is a few frame periods (issue #15). Frames fall on whole multiples
+    of the period of the robot's current activity (the next one after the last frame), as
+    :class:`Schedule`'s do: a camera pose then shares its stamp with a /tf message (a listener
+    composing the camera frame from /tf found none when the frames ran one physics step off)."""
 
     def __init__(self, walking_hz: float, standing_hz: float) -> None:
         if not (walking_hz > 0 and standing_hz > 0):
             raise ValueError(f"frame rates must be positive, got {walking_hz} and {standing_hz} Hz")
         self.walking_period, self.standing_period = 1.0 / walking_hz, 1.0 / standing_hz
-        self.last_time = float("-inf")
+        self.last_time = -1.0  # s: the first frame is due at 0
 
     def due(self, now: float, walking: bool) -> bool:
         """Whether a frame is due at ``now``; if so, it is counted as taken."""
         period = self.walking_period if walking else self.standing_period
-        if now + 1e-9 < self.last_time + period:
+        if now + 1e-9 < (math.floor(self.last_time / period + 1e-9) + 1.0) * period:
             return False
         self.last_time = now
         return True

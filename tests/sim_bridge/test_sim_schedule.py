@@ -44,3 +44,14 @@ def test_after_a_walk_the_next_frame_is_a_standing_period_after_the_last() -> No
 def test_a_frame_schedule_needs_positive_rates(walking_hz, standing_hz) -> None:
     with pytest.raises(ValueError, match="frame rates must be positive"):
         FrameSchedule(walking_hz, standing_hz)
+
+
+def test_frames_fall_on_multiples_of_the_period_as_the_other_streams_do() -> None:
+    """A camera pose must share its stamp with a /tf message: frames one physics step off the
+    period's multiples shared none (the /tf listener test waited in vain)."""
+    frames, tf = FrameSchedule(walking_hz=2.0, standing_hz=8.0), Schedule(20.0)
+    steps = [k / 240 for k in range(1, 481)]
+    camera = [t for t in steps if frames.due(t, walking=False)]
+    assert camera[1:4] == pytest.approx([0.125, 0.25, 0.375])
+    shared = {round(t, 9) for t in camera} & {round(t, 9) for t in steps if tf.due(t)}
+    assert len(shared) >= 7  # every 0.25 s
