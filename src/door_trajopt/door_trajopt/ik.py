@@ -49,6 +49,11 @@ class IkResult:
     rotation_error: float  # rad
     converged: bool
 
+    @property
+    def miss(self) -> float:
+        """|e_p| + 0.1 |e_R| (m; 0.1 m per rad): how :func:`solve_ik_multistart` ranks results."""
+        return self.position_error + 0.1 * self.rotation_error
+
 
 def pose_error(current: np.ndarray, target: np.ndarray) -> np.ndarray:
     """(p* − p, log(R* Rᵀ)) in world-aligned axes."""
@@ -81,7 +86,7 @@ def solve_ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray,
 
 
 def _error_size(error: np.ndarray) -> float:
-    """|e_p| + 0.1 |e_R| (m; 0.1 m per rad), the measure the multistart ranks by."""
+    """|e_p| + 0.1 |e_R| (m; 0.1 m per rad) of an error vector, as :attr:`IkResult.miss`."""
     return float(np.linalg.norm(error[:3]) + 0.1 * np.linalg.norm(error[3:]))
 
 
@@ -120,8 +125,7 @@ def solve_ik_multistart(chain: ArmChain, target: np.ndarray, seeds: list[np.ndar
         result = solve_ik(chain, target, seed, options, mask)
         if result.converged:
             return result
-        if best is None or result.position_error + 0.1 * result.rotation_error < \
-                best.position_error + 0.1 * best.rotation_error:
+        if best is None or result.miss < best.miss:
             best = result
     if best is None:
         raise TrajoptError("solve_ik_multistart needs at least one seed")

@@ -28,7 +28,7 @@ from door_contract.ranges import FieldRange, check_in_range
 from door_contract.vocabulary import Motion, Side
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import UP, DoorModel, rotation_vector
-from door_trajopt.ik import IkOptions, solve_ik, solve_ik_multistart
+from door_trajopt.ik import IkOptions, solve_ik
 from door_trajopt.problem import (
     Constraint,
     ConstraintKind,
@@ -691,16 +691,16 @@ def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray 
     rng = np.random.default_rng(0)
     seeds = [seed, chain.chain_of(chain.kinematics.nominal_q)] + [rng.uniform(chain.lower, chain.upper)
                                                                   for _ in range(6)]
-    converged: list[np.ndarray] = []
+    solutions = []
     for start in seeds:
         solution = solve_ik(chain, target, start, mask=mask)
-        if solution.converged:
-            if _limit_margin(chain, solution.chain_q) >= KEY_POSE_MARGIN:
-                return solution.chain_q
-            converged.append(solution.chain_q)
+        if solution.converged and _limit_margin(chain, solution.chain_q) >= KEY_POSE_MARGIN:
+            return solution.chain_q
+        solutions.append(solution)
+    converged = [solution.chain_q for solution in solutions if solution.converged]
     if converged:
         return max(converged, key=lambda q: _limit_margin(chain, q))
-    return solve_ik_multistart(chain, target, seeds, mask=mask).chain_q
+    return min(solutions, key=lambda solution: solution.miss).chain_q
 
 
 KEY_POSE_MARGIN = 0.05
