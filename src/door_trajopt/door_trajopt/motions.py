@@ -680,17 +680,18 @@ def _within_limits(problem: TrajectoryProblem, chain_q: np.ndarray) -> np.ndarra
 
 
 def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
-    """A key pose: the first IK solution (from ``seed``, the nominal posture, then 6 random
-    seeds) that keeps :data:`KEY_POSE_MARGIN` from every joint limit (:func:`_limit_margin`),
-    else the converged one farthest from them, else the closest. The first converged one had
-    been taken: on the sideways push stance with the lever at 0.87-0.88 m it put the shoulder
-    roll at its limit and the torso pitch 0.05 rad from its stop, and no turn of the handle
-    was feasible from that grasp. That fixed the left hand only: the right hand's mirrored
-    doors still find no turn at 0.87-0.88 m, whatever key pose is chosen (a Monte-Carlo door
-    failed so), for a reason not yet found."""
+    """A key pose: the first IK solution (from ``seed``, the nominal posture, then
+    :data:`KEY_POSE_RANDOM_SEEDS` random seeds) that keeps :data:`KEY_POSE_MARGIN` from every
+    joint limit (:func:`_limit_margin`), else the converged one farthest from them, else the
+    closest. The first converged one had been taken: on the sideways push stance with the
+    lever at 0.87-0.88 m it put the shoulder roll at its limit and the torso pitch 0.05 rad
+    from its stop, and no turn of the handle was feasible from that grasp. There no solution
+    keeps the margin, so the choice is among the converged ones: with 6 random seeds the left
+    hand found the branch that turns and the right hand (mirrored doors) did not; with 24
+    both do (the seeds are only all tried when no early one is good, ~1.5 ms each)."""
     rng = np.random.default_rng(0)
     seeds = [seed, chain.chain_of(chain.kinematics.nominal_q)] + [rng.uniform(chain.lower, chain.upper)
-                                                                  for _ in range(6)]
+                                                                  for _ in range(KEY_POSE_RANDOM_SEEDS)]
     solutions = []
     for start in seeds:
         solution = solve_ik(chain, target, start, mask=mask)
@@ -705,6 +706,9 @@ def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray 
 
 KEY_POSE_MARGIN = 0.05
 """rad from every joint limit that makes an IK key pose good enough to take at once."""
+
+KEY_POSE_RANDOM_SEEDS = 24
+"""Random IK seeds a key pose may try after the given seed and the nominal posture."""
 
 
 def _limit_margin(chain: ArmChain, chain_q: np.ndarray) -> float:
