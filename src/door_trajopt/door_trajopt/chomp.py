@@ -301,20 +301,27 @@ class ChompSolver(BackendSolver[ChompOptions]):
         return release if any(part.size for part in release) else None
 
     def _blocking(self, model: PointModel, delta: FloatArray) -> WorkingSet:
-        """Inequality rows the step would violate (linearised).
+        """Inequality rows the step would violate (linearised), and the joint limits it
+        would push a variable through that already lies on them.
 
-        Joint limits the step would cross are *not* added: the trial point is clipped to
-        the box, and a variable left on its limit joins the working set at the next
-        iteration (:meth:`_initial_working_set`). Added here, a long first step from a
+        Limits the step would only cross further on are *not* added: the trial point is
+        clipped to the box, and a variable left on its limit joins the working set at the
+        next iteration (:meth:`_initial_working_set`). Added here, a long first step from a
         far guess put hundreds of limits into ``S`` at once (405 rows on the peer
         benchmark's reach, a dense Cholesky each active-set pass: 3-7x slower than plain
         CHOMP), and limits contradicting the linearised poses made ``S`` nearly singular
-        (multipliers of 1e8, a step of 7,000 rad that no line search could use).
+        (multipliers of 1e8, a step of 7,000 rad that no line search could use). A limit
+        the variable sits on is different: a released one that the next step pushes
+        outwards is clipped at any step length, the rest of the step then no longer keeps
+        the equalities, and no backtracking can decrease the merit (the sideways push's
+        ``ready_to_walk`` stalled so at 68 of 78 doors).
         """
         tolerance = self._options.constraint_tolerance
         linearised = model.values.inequality + model.inequality_jacobian @ delta
-        empty = np.zeros(0, dtype=np.int64)
-        return WorkingSet(np.flatnonzero(linearised > tolerance), empty, empty)
+        free = model.values.free
+        return WorkingSet(np.flatnonzero(linearised > tolerance),
+                          self._limit_candidates((free >= self._upper - tolerance) & (delta > 0.0)),
+                          self._limit_candidates((free <= self._lower + tolerance) & (delta < 0.0)))
 
     # --- eq. (5) ------------------------------------------------------------
 
