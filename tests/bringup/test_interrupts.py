@@ -58,16 +58,36 @@ def _is_node(pid: int) -> bool:
         return False
 
 
-def _started(root: int, graph: set[int], nodes: int) -> bool:
+Process = tuple[int, str]
+"""A process as (pid, start time in clock ticks since boot): a pid alone may be reused on this
+shared machine (pid_max 32768) by another job's process before the check looks again."""
+
+
+def _identity(pid: int) -> Process | None:
+    """The process ``pid`` names now; None when gone."""
+    fields = _stat(pid)
+    return (pid, fields[19]) if len(fields) > 19 else None
+
+
+def _started(root: int, graph: set[Process], nodes: int) -> bool:
     """Whether ``nodes`` node processes run below ``root`` now (every descendant seen is kept in
     ``graph``)."""
-    below = _descendants(root)
+    below = {process for pid in _descendants(root) if (process := _identity(pid)) is not None}
     graph.update(below)
-    return sum(1 for pid in _alive(below) if _is_node(pid)) >= nodes
+    return sum(1 for pid, _ in _alive(below) if _is_node(pid)) >= nodes
 
 
-def _alive(pids: set[int]) -> set[int]:
-    return {pid for pid in pids if (fields := _stat(pid)) and fields[0] != "Z"}
+def _alive(processes: set[Process]) -> set[Process]:
+    """Those of ``processes`` still running (not zombies, pid not taken over by another process)."""
+    return {(pid, start) for pid, start in processes
+            if (fields := _stat(pid)) and len(fields) > 19 and fields[19] == start and fields[0] != "Z"}
+
+
+def _command(pid: int) -> str:
+    try:
+        return Path(f"/proc/{pid}/cmdline").read_bytes().replace(b"\0", b" ").decode(errors="replace")[:200]
+    except OSError:
+        return "(gone)"
 
 
 def _until(condition, deadline_s: float) -> bool:
@@ -90,16 +110,16 @@ def test_a_sigterm_to_the_monte_carlo_stops_every_graph_and_worker(workspace, tm
         job = subprocess.Popen([sys.executable, "-m", "door_bringup.monte_carlo", "--trials", "2", "--jobs", "2",
                                 "--seed", "11"], env=workspace.environment(), stdout=subprocess.DEVNULL,
                                stderr=sink)
-    below: set[int] = set()
+    below: set[Process] = set()
     try:
         assert _until(lambda: _started(job.pid, below, 10), 180.0), "the two graphs did not start"
         assert job.poll() is None
         job.send_signal(signal.SIGTERM)
         assert job.wait(timeout=90) == INTERRUPTED
-        assert _until(lambda: not _alive(below), 60.0), _alive(below)  # no node or worker orphaned
+        assert _until(lambda: not _alive(below), 60.0), [_command(pid) for pid, _ in _alive(below)]  # none orphaned
         said = stderr.read_text()
         assert "interrupted (SIGTERM): 0 of 2 trials finished; --resume " in said and "Traceback" not in said
     finally:
         job.kill()
-        for pid in _alive(below):
+        for pid, _ in _alive(below):
             os.kill(pid, signal.SIGKILL)
