@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from door_scenes import estimate_from_world, motion_setup, stand_world, talos_kinematics
 
-from door_contract.vocabulary import Backend, DoorOpening, HingeSide, Motion, grasp_hand
+from door_contract.vocabulary import Backend, DoorOpening, HingeSide, Motion, Side, grasp_hand
 from door_sim_bridge.execution import TrajectoryExecution
 from door_trajopt.chomp import ChompSolver
 from door_trajopt.door_model import rotation_vector
@@ -326,12 +326,14 @@ def test_sideways_ready_to_walk_starts_from_a_guess_on_the_leaf_and_inside_the_d
     assert plan.result.iterations <= 15
 
 
+@pytest.mark.parametrize("hand", [Side.LEFT, Side.RIGHT])
 @pytest.mark.parametrize("lever_height", [0.87, 0.88])
-def test_sideways_a_low_lever_is_grasped_with_room_left_to_turn_it(lever_height):
+def test_sideways_a_low_lever_is_grasped_with_room_left_to_turn_it(lever_height, hand):
     """The approach's key pose is the IK solution farthest from the joint limits: the first one
     found put TALOS's shoulder roll at its limit for a lever at 0.87-0.88 m (sideways stance),
     and no turn was feasible from that grasp (closed chain off by 7.9 cm; a full-range
-    Monte-Carlo door failed its four TURN_HANDLE attempts so)."""
+    Monte-Carlo door failed its four TURN_HANDLE attempts so). The right hand opens the mirrored
+    door: with 6 random IK seeds it never met the branch that turns (24 now)."""
     from door_evaluation.trajopt.benchmark_motions import DOOR_WIDTH, scenarios
     from door_trajopt.chain import ArmChain
     from door_trajopt.door_model import DoorModel
@@ -339,14 +341,39 @@ def test_sideways_a_low_lever_is_grasped_with_room_left_to_turn_it(lever_height)
 
     kinematics = talos_kinematics()
     scenario = next(s for s in scenarios(kinematics) if s.name == "push, sideways")
+    assert scenario.hand is Side.LEFT
     drop = np.array([0.0, 0.0, lever_height - 0.91])
-    door = DoorModel(scenario.door.grasp_point + drop, scenario.door.normal, scenario.door.hinge_point + drop,
-                     push=True)
+    mirror = np.array([1.0, 1.0 if hand is Side.LEFT else -1.0, 1.0])  # about the robot's sagittal plane
+    door = DoorModel(mirror * (scenario.door.grasp_point + drop), mirror * scenario.door.normal,
+                     mirror * (scenario.door.hinge_point + drop), push=True)
     library, body_q, angle = MotionLibrary(), kinematics.nominal_q.copy(), 0.0
     for motion in (Motion.APPROACH_HANDLE, Motion.TURN_HANDLE):
-        chain = ArmChain(kinematics, scenario.hand, body_q)
+        chain = ArmChain(kinematics, hand, body_q)
         setup = MotionSetup(chain, door, DOOR_WIDTH, support_polygon(chain), start_door_for(motion, angle, library.options))
         plan = library.plan(motion, setup, chain.chain_of(body_q), Backend.SQP)
         assert plan.succeeded, (motion, plan.result.message, plan.result.violated_constraint)
         body_q, angle = chain.full(plan.result.trajectory[-1, :chain.size]), plan.final_door[0]
         library.clear_cache()
+
+
+def test_sideways_chomp_plans_every_motion_of_the_push_door():
+    """Constrained CHOMP through the sideways push sequence: its ready_to_walk stalled ("no merit
+    decrease") on 68 of 78 doors, a limit the working set had released for its negative
+    multiplier being pushed through by the next step and clipped; such limits now join the
+    working set when the line search finds no decrease."""
+    from door_evaluation.trajopt.benchmark_motions import DOOR_WIDTH, scenarios
+    from door_trajopt.chain import ArmChain
+    from door_trajopt.motions import MotionSetup, support_polygon
+
+    kinematics = talos_kinematics()
+    scenario = next(s for s in scenarios(kinematics) if s.name == "push, sideways")
+    library, body_q, angle = MotionLibrary(), kinematics.nominal_q.copy(), 0.0
+    for motion in scenario.sequence:
+        chain = ArmChain(kinematics, scenario.hand, body_q)
+        setup = MotionSetup(chain, scenario.door, DOOR_WIDTH, support_polygon(chain),
+                            start_door_for(motion, angle, library.options))
+        plan = library.plan(motion, setup, chain.chain_of(body_q), Backend.CHOMP)
+        assert plan.succeeded, (motion, plan.result.message, plan.result.violated_constraint)
+        body_q, angle = chain.full(plan.result.trajectory[-1, :chain.size]), plan.final_door[0]
+        library.clear_cache()
+    assert Motion.READY_TO_WALK in scenario.sequence

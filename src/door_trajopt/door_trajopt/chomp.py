@@ -197,6 +197,11 @@ class ChompSolver(BackendSolver[ChompOptions]):
             step = self._working_set_step(model, self._iteration_metric(values))
             penalty = max(penalty, 1.5 * float(np.max(np.abs(step.multipliers), initial=0.0)))
             accepted = self._line_search(model, step, penalty)
+            if accepted is None and not (pushed := self._pushed_through(model, step.step)).is_empty:
+                step = self._constrained_step(model, self._active_system(model, step.system.working.merged(pushed)),
+                                              step.metric)
+                penalty = max(penalty, 1.5 * float(np.max(np.abs(step.multipliers), initial=0.0)))
+                accepted = self._line_search(model, step, penalty)
             if accepted is None:
                 converged, note = True, self._stall_note(model, step, penalty)
             else:
@@ -301,26 +306,34 @@ class ChompSolver(BackendSolver[ChompOptions]):
         return release if any(part.size for part in release) else None
 
     def _blocking(self, model: PointModel, delta: FloatArray) -> WorkingSet:
-        """Inequality rows the step would violate (linearised), and the joint limits it
-        would push a variable through that already lies on them.
+        """Inequality rows the step would violate (linearised).
 
-        Limits the step would only cross further on are *not* added: the trial point is
-        clipped to the box, and a variable left on its limit joins the working set at the
-        next iteration (:meth:`_initial_working_set`). Added here, a long first step from a
+        Joint limits the step would cross are *not* added: the trial point is clipped to
+        the box, and a variable left on its limit joins the working set at the next
+        iteration (:meth:`_initial_working_set`). Added here, a long first step from a
         far guess put hundreds of limits into ``S`` at once (405 rows on the peer
         benchmark's reach, a dense Cholesky each active-set pass: 3-7x slower than plain
         CHOMP), and limits contradicting the linearised poses made ``S`` nearly singular
-        (multipliers of 1e8, a step of 7,000 rad that no line search could use). A limit
-        the variable sits on is different: a released one that the next step pushes
-        outwards is clipped at any step length, the rest of the step then no longer keeps
-        the equalities, and no backtracking can decrease the merit (the sideways push's
-        ``ready_to_walk`` stalled so at 68 of 78 doors).
+        (multipliers of 1e8, a step of 7,000 rad that no line search could use).
         """
         tolerance = self._options.constraint_tolerance
         linearised = model.values.inequality + model.inequality_jacobian @ delta
-        free = model.values.free
-        return WorkingSet(np.flatnonzero(linearised > tolerance),
-                          self._limit_candidates((free >= self._upper - tolerance) & (delta > 0.0)),
+        empty = np.zeros(0, dtype=np.int64)
+        return WorkingSet(np.flatnonzero(linearised > tolerance), empty, empty)
+
+    def _pushed_through(self, model: PointModel, delta: FloatArray) -> WorkingSet:
+        """The joint limits a step would push a variable out through that already lies on them.
+
+        Such a variable is clipped at any step length, the rest of the step then no longer
+        keeps the equalities, and no backtracking decreases the merit: the sideways push's
+        ``ready_to_walk`` stalled so at 68 of 78 doors, on a limit the working set had
+        released for its negative multiplier. Used only when the line search found no
+        decrease: added at every working-set pass, release and re-adding alternated (4.5x
+        the solves), and added after every settled pass they slowed the handle's turn 20x.
+        """
+        free, tolerance = model.values.free, self._options.constraint_tolerance
+        empty = np.zeros(0, dtype=np.int64)
+        return WorkingSet(empty, self._limit_candidates((free >= self._upper - tolerance) & (delta > 0.0)),
                           self._limit_candidates((free <= self._lower + tolerance) & (delta < 0.0)))
 
     # --- eq. (5) ------------------------------------------------------------
