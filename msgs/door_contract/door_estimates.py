@@ -8,11 +8,15 @@ from collections import OrderedDict
 from door_contract.payloads import DoorEstimate, decode
 from door_contract.ranges import FieldRange
 
-__all__ = ["DOOR_ANGLE_RANGE", "DOOR_WIDTH_RANGE", "DoorEstimateHistory", "door_angle_problem", "door_estimate_problem",
+__all__ = ["DOOR_ANGLE_RANGE", "DOOR_NORMAL_MAX_UP", "DOOR_WIDTH_RANGE", "DoorEstimateHistory", "door_angle_problem", "door_estimate_problem",
            "requested_estimate_problem"]
 
 DOOR_WIDTH_RANGE = FieldRange(0.3, 2.5, "m")
 """Door widths a planner accepts (the detector's width parameters stay inside it)."""
+
+DOOR_NORMAL_MAX_UP = 0.5
+"""Largest |n_z| / |n| of a door normal in odom (z up): a door is a vertical plane (the normal
+60° from vertical at most, far beyond any real door's tilt or depth noise)."""
 
 DOOR_ANGLE_RANGE = FieldRange(-0.1, 2.0, "rad")
 """Hinge angles a request may carry: closed (0) to beyond a right angle, with 0.1 rad of slack
@@ -23,12 +27,12 @@ def door_estimate_problem(estimate: DoorEstimate) -> str | None:
     """Why a (finite, decoded) estimate cannot be planned with, or None.
 
     The normal must be a direction (|n| ≈ 1, to 10 %) and mostly horizontal (a door is a
-    vertical plane: |n_z| ≤ 0.5); a zero normal made the optimiser's outcome NaN (issue #12).
+    vertical plane: |n_z| ≤ :data:`DOOR_NORMAL_MAX_UP`); a zero normal made the optimiser's outcome NaN (issue #12).
     """
     norm = math.sqrt(sum(v * v for v in estimate.normal))
     if not 0.9 <= norm <= 1.1:
         return f"door normal {estimate.normal} is not a unit vector (|n| = {norm:.3g})"
-    if abs(estimate.normal[2]) > 0.5 * norm:
+    if abs(estimate.normal[2]) > DOOR_NORMAL_MAX_UP * norm:
         return f"door normal {estimate.normal} is not horizontal: a door is a vertical plane"
     if not DOOR_WIDTH_RANGE.admits(estimate.width):
         return f"door width {estimate.width:g} m is outside {DOOR_WIDTH_RANGE.describe()}"

@@ -85,3 +85,29 @@ def test_a_dropped_frame_names_the_stream_it_lacked() -> None:
     report = detector.dropped(DroppedFrame(4.0, ("info",)))
     assert report.warning and report.note == "frame at 4.00 s dropped: no CameraInfo with its stamp"
     assert report.values == {"incomplete": 1, "missing": "CameraInfo"}
+
+
+def test_a_plane_that_is_not_vertical_in_odom_is_no_door(straight_on) -> None:
+    """The same rendered door, with the camera pose saying the camera looked straight down: its
+    plane is then the floor in odom. A head search looking down once confirmed such a plane (the
+    handle on the floor); the FSM refused the estimate and nothing else was confirmed."""
+    down = np.array([[0.0, -1.0, 0.0, 0.0], [-1.0, 0.0, 0.0, 0.0], [0.0, 0.0, -1.0, 1.5], [0.0, 0.0, 0.0, 1.0]])
+    detector = _detector()
+    reports = [detector.process(CameraFrame(10.0 + 0.5 * i, straight_on.rgb, straight_on.depth,
+                                            straight_on.intrinsics, down), now=0.0) for i in range(3)]
+    assert all(report.confirmed is None and report.seen is None for report in reports)
+    assert reports[0].note.startswith("frame at 10.00 s: not_upright: the plane's normal is ")
+    assert "° from vertical, not horizontal" in reports[0].note
+    assert detector.counters() == {"frames": 3, "rejected": 3}
+    upright = detector.process(CameraFrame(12.0, straight_on.rgb, straight_on.depth, straight_on.intrinsics,
+                                           CAMERA_POSE), now=0.0)
+    assert upright.seen is not None
+
+
+def test_upright_problem_accepts_a_door_tilted_by_noise_and_refuses_floor_and_ceiling() -> None:
+    from door_detection.detector import upright_problem
+
+    assert upright_problem(np.array([0.99, 0.0, 0.14])) is None  # 8° of tilt
+    assert upright_problem(np.array([0.0, 0.0, 1.0])) is not None
+    assert upright_problem(np.array([0.1, 0.0, -0.99])) is not None
+    assert upright_problem(np.zeros(3)) is not None

@@ -22,11 +22,12 @@ from typing import Any
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
+from door_contract.door_estimates import DOOR_NORMAL_MAX_UP
 from door_contract.frames import Frame
 from door_contract.parameters import require_ordered
 from door_contract.payloads import DoorEstimate
 from door_detection.automatic import detect_automatic
-from door_detection.estimate import DetectedDoor, DetectionResult
+from door_detection.estimate import DetectedDoor, DetectionOutcome, DetectionResult
 from door_detection.frame_sync import DroppedFrame
 from door_detection.operator_aided import detect_from_scribble
 from door_detection.options import DetectionOptions
@@ -35,10 +36,23 @@ from door_detection.scribble import scribble_problem
 from door_detection.voting import Voter
 from door_robot.profile import RobotProfile
 
-__all__ = ["CameraFrame", "DetectorCamera", "DoorDetector", "FrameReport"]
+__all__ = ["CameraFrame", "DetectorCamera", "DoorDetector", "FrameReport", "upright_problem"]
 
 UP = np.array([0.0, 0.0, 1.0])
 """The world's up in ``odom`` (REP-103: z up)."""
+
+
+def upright_problem(normal_in_odom: np.ndarray) -> str | None:
+    """Why a door plane with this normal (odom, z up) is no door, or None: a door is vertical,
+    so its normal is horizontal up to :data:`~door_contract.door_estimates.DOOR_NORMAL_MAX_UP`
+    (the FSM's own test of a published estimate). A head search looking down once confirmed the
+    floor between two lines as a door (normal straight up, the handle on the floor); the FSM
+    refused it and the search had stopped."""
+    norm = float(np.linalg.norm(normal_in_odom))
+    if norm > 0.0 and abs(float(normal_in_odom[2])) <= DOOR_NORMAL_MAX_UP * norm:
+        return None
+    tilt = np.degrees(np.arccos(min(1.0, abs(float(normal_in_odom[2])) / norm))) if norm > 0.0 else float("nan")
+    return f"the plane's normal is {tilt:.0f}° from vertical, not horizontal (a door is a vertical plane)"
 
 
 @dataclass(frozen=True)
@@ -160,7 +174,11 @@ class DoorDetector:
         if not result.ok or result.estimate is None:
             self.voter.add(None)
             return self.refuse(f"frame at {frame.stamp:.2f} s: {result.outcome.value}: {result.reason}", False)
-        vote = self.voter.add(result.estimate.transformed(frame.camera_pose))
+        seen = result.estimate.transformed(frame.camera_pose)
+        if (tilt := upright_problem(seen.normal)) is not None:
+            self.voter.add(None)
+            return self.refuse(f"frame at {frame.stamp:.2f} s: {DetectionOutcome.NOT_UPRIGHT.value}: {tilt}", False)
+        vote = self.voter.add(seen)
         report: dict[str, Any] = {"note": f"{vote.outcome.value} {vote.agreeing}/{vote.window}",
                                   "logged": False, "seen": result.estimate,
                                   "values": {"frame_ms": round(result.elapsed * 1000.0, 1),

@@ -42,6 +42,9 @@ class DetectionOutcome(Enum):
     """A door was found but no handle blob on either side."""
     PLANE_FIT_FAILED = "plane_fit_failed"
     """Operator-aided: the points around the scribble do not hold a plane."""
+    NOT_UPRIGHT = "not_upright"
+    """The plane found between two lines is not vertical in odom (e.g. the floor between a door's
+    jambs seen from a head tilted down): no door."""
     INTERNAL_ERROR = "internal_error"
     """An unforeseen failure inside the pipeline (a bug); the reason names it."""
     VOTING = "voting"
