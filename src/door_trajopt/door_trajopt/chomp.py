@@ -195,12 +195,12 @@ class ChompSolver(BackendSolver[ChompOptions]):
             iteration += 1
             model = evaluator.model(values)
             step = self._working_set_step(model, self._iteration_metric(values))
-            penalty = max(penalty, 1.5 * float(np.max(np.abs(step.multipliers), initial=0.0)))
+            penalty = self._raised_penalty(penalty, step)
             accepted = self._line_search(model, step, penalty)
             if accepted is None and not (pushed := self._pushed_through(model, step.step)).is_empty:
                 step = self._constrained_step(model, self._active_system(model, step.system.working.merged(pushed)),
                                               step.metric)
-                penalty = max(penalty, 1.5 * float(np.max(np.abs(step.multipliers), initial=0.0)))
+                penalty = self._raised_penalty(penalty, step)
                 accepted = self._line_search(model, step, penalty)
             if accepted is None:
                 converged, note = True, self._stall_note(model, step, penalty)
@@ -209,6 +209,11 @@ class ChompSolver(BackendSolver[ChompOptions]):
                 values = accepted
         summary = RunSummary(values, converged, iteration, started, note)
         return build_result(evaluator, summary, options.constraint_tolerance)
+
+    @staticmethod
+    def _raised_penalty(penalty: float, step: ConstrainedStep) -> float:
+        """The l1 merit's penalty, never lowered: at least 1.5 max |lambda| of ``step``."""
+        return max(penalty, 1.5 * float(np.max(np.abs(step.multipliers), initial=0.0)))
 
     def _stall_note(self, model: PointModel, step: ConstrainedStep, penalty: float) -> str:
         """Empty at a stationary point, else why the line search gave up."""
@@ -226,13 +231,17 @@ class ChompSolver(BackendSolver[ChompOptions]):
     # --- working set --------------------------------------------------------
 
     def _initial_working_set(self, model: PointModel) -> WorkingSet:
-        free = model.values.free
-        tolerance = self._options.constraint_tolerance
+        at_upper, at_lower = self._on_limits(model.values.free)
         return WorkingSet(
-            np.flatnonzero(model.values.inequality >= -tolerance),
-            self._limit_candidates(free >= self._upper - tolerance),
-            self._limit_candidates(free <= self._lower + tolerance),
+            np.flatnonzero(model.values.inequality >= -self._options.constraint_tolerance),
+            self._limit_candidates(at_upper),
+            self._limit_candidates(at_lower),
         )
+
+    def _on_limits(self, free: FloatArray) -> tuple[npt.NDArray[np.bool_], npt.NDArray[np.bool_]]:
+        """Masks of the variables on (within the constraint tolerance of) their upper and lower limits."""
+        tolerance = self._options.constraint_tolerance
+        return free >= self._upper - tolerance, free <= self._lower + tolerance
 
     def _limit_candidates(self, mask: npt.NDArray[np.bool_]) -> IntArray:
         """Variables flagged by ``mask``, except those pinned by an equality row."""
@@ -331,10 +340,10 @@ class ChompSolver(BackendSolver[ChompOptions]):
         decrease: added at every working-set pass, release and re-adding alternated (4.5x
         the solves), and added after every settled pass they slowed the handle's turn 20x.
         """
-        free, tolerance = model.values.free, self._options.constraint_tolerance
+        at_upper, at_lower = self._on_limits(model.values.free)
         empty = np.zeros(0, dtype=np.int64)
-        return WorkingSet(empty, self._limit_candidates((free >= self._upper - tolerance) & (delta > 0.0)),
-                          self._limit_candidates((free <= self._lower + tolerance) & (delta < 0.0)))
+        return WorkingSet(empty, self._limit_candidates(at_upper & (delta > 0.0)),
+                          self._limit_candidates(at_lower & (delta < 0.0)))
 
     # --- eq. (5) ------------------------------------------------------------
 
