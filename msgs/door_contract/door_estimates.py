@@ -4,12 +4,16 @@ from __future__ import annotations
 
 import math
 from collections import OrderedDict
+from collections.abc import Sequence
+
+import numpy as np
+import numpy.typing as npt
 
 from door_contract.payloads import DoorEstimate, decode
 from door_contract.ranges import FieldRange
 
-__all__ = ["DOOR_ANGLE_RANGE", "DOOR_NORMAL_MAX_UP", "DOOR_WIDTH_RANGE", "DoorEstimateHistory", "door_angle_problem", "door_estimate_problem",
-           "requested_estimate_problem"]
+__all__ = ["DOOR_ANGLE_RANGE", "DOOR_NORMAL_MAX_UP", "DOOR_WIDTH_RANGE", "DoorEstimateHistory", "door_angle_problem",
+           "door_estimate_problem", "normal_is_horizontal", "requested_estimate_problem"]
 
 DOOR_WIDTH_RANGE = FieldRange(0.3, 2.5, "m")
 """Door widths a planner accepts (the detector's width parameters stay inside it)."""
@@ -23,6 +27,14 @@ DOOR_ANGLE_RANGE = FieldRange(-0.1, 2.0, "rad")
 below for a door resting on its stop (the footstep planner's passage angle tops at 2.0)."""
 
 
+def normal_is_horizontal(normal: Sequence[float] | npt.NDArray[np.float64]) -> bool:
+    """Whether a door normal (odom, z up) is horizontal enough for a door, a vertical plane:
+    nonzero and |n_z| ≤ :data:`DOOR_NORMAL_MAX_UP` |n|. The FSM's estimates and the detector's
+    frames are judged by it."""
+    norm = math.sqrt(sum(float(v) * float(v) for v in normal))
+    return norm > 0.0 and abs(float(normal[2])) <= DOOR_NORMAL_MAX_UP * norm
+
+
 def door_estimate_problem(estimate: DoorEstimate) -> str | None:
     """Why a (finite, decoded) estimate cannot be planned with, or None.
 
@@ -32,7 +44,7 @@ def door_estimate_problem(estimate: DoorEstimate) -> str | None:
     norm = math.sqrt(sum(v * v for v in estimate.normal))
     if not 0.9 <= norm <= 1.1:
         return f"door normal {estimate.normal} is not a unit vector (|n| = {norm:.3g})"
-    if abs(estimate.normal[2]) > DOOR_NORMAL_MAX_UP * norm:
+    if not normal_is_horizontal(estimate.normal):
         return f"door normal {estimate.normal} is not horizontal: a door is a vertical plane"
     if not DOOR_WIDTH_RANGE.admits(estimate.width):
         return f"door width {estimate.width:g} m is outside {DOOR_WIDTH_RANGE.describe()}"

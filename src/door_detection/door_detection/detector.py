@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from door_contract.converters.camera_info import CameraIntrinsics
-from door_contract.door_estimates import DOOR_NORMAL_MAX_UP
+from door_contract.door_estimates import normal_is_horizontal
 from door_contract.frames import Frame
 from door_contract.parameters import require_ordered
 from door_contract.payloads import DoorEstimate
@@ -43,14 +43,14 @@ UP = np.array([0.0, 0.0, 1.0])
 
 
 def upright_problem(normal_in_odom: np.ndarray) -> str | None:
-    """Why a door plane with this normal (odom, z up) is no door, or None: a door is vertical,
-    so its normal is horizontal up to :data:`~door_contract.door_estimates.DOOR_NORMAL_MAX_UP`
-    (the FSM's own test of a published estimate). A head search looking down once confirmed the
-    floor between two lines as a door (normal straight up, the handle on the floor); the FSM
-    refused it and the search had stopped."""
-    norm = float(np.linalg.norm(normal_in_odom))
-    if norm > 0.0 and abs(float(normal_in_odom[2])) <= DOOR_NORMAL_MAX_UP * norm:
+    """Why a door plane with this normal (odom, z up) is no door, or None: a door is vertical
+    (:func:`~door_contract.door_estimates.normal_is_horizontal`, the FSM's own test of a
+    published estimate). A head search looking down once confirmed the floor between two lines
+    as a door (normal straight up, the handle on the floor); the FSM refused it and the search
+    had stopped."""
+    if normal_is_horizontal(normal_in_odom):
         return None
+    norm = float(np.linalg.norm(normal_in_odom))
     tilt = np.degrees(np.arccos(min(1.0, abs(float(normal_in_odom[2])) / norm))) if norm > 0.0 else float("nan")
     return f"the plane's normal is {tilt:.0f}° from vertical, not horizontal (a door is a vertical plane)"
 
