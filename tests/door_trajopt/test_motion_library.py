@@ -361,19 +361,11 @@ def test_sideways_chomp_plans_every_motion_of_the_push_door():
     decrease") on 68 of 78 doors, a limit the working set had released for its negative
     multiplier being pushed through by the next step and clipped; such limits now join the
     working set when the line search finds no decrease."""
-    from door_evaluation.trajopt.benchmark_motions import DOOR_WIDTH, scenarios
-    from door_trajopt.chain import ArmChain
-    from door_trajopt.motions import MotionSetup, support_polygon
+    from door_evaluation.trajopt.benchmark_motions import run_sequence, scenarios
 
     kinematics = talos_kinematics()
     scenario = next(s for s in scenarios(kinematics) if s.name == "push, sideways")
-    library, body_q, angle = MotionLibrary(), kinematics.nominal_q.copy(), 0.0
-    for motion in scenario.sequence:
-        chain = ArmChain(kinematics, scenario.hand, body_q)
-        setup = MotionSetup(chain, scenario.door, DOOR_WIDTH, support_polygon(chain),
-                            start_door_for(motion, angle, library.options))
-        plan = library.plan(motion, setup, chain.chain_of(body_q), Backend.CHOMP)
-        assert plan.succeeded, (motion, plan.result.message, plan.result.violated_constraint)
-        body_q, angle = chain.full(plan.result.trajectory[-1, :chain.size]), plan.final_door[0]
-        library.clear_cache()
-    assert Motion.READY_TO_WALK in scenario.sequence
+    planned = run_sequence(kinematics, scenario, MotionLibrary(), Backend.CHOMP)
+    assert Motion.READY_TO_WALK in planned
+    assert all(succeeded for *_, succeeded in planned.values()), \
+        {motion.value: succeeded for motion, (*_, succeeded) in planned.items()}

@@ -40,7 +40,7 @@ from door_trajopt.door_model import DoorModel
 from door_trajopt.library import MotionLibrary
 from door_trajopt.motions import MotionSetup, start_door_for, support_polygon
 
-__all__ = ["DOOR_WIDTH", "Scenario", "main", "scenarios"]
+__all__ = ["DOOR_WIDTH", "Scenario", "main", "run_sequence", "scenarios"]
 
 # [Banerjee 2015] Sec. V: 10.1 s per plan for the pull door, 15.5 s for the push door (one guess)
 PUSH_SEQUENCE = {Motion.APPROACH_HANDLE: 10.1, Motion.TURN_HANDLE: 10.1, Motion.PUSH_DOOR: 15.5}
