@@ -36,11 +36,12 @@ def world():
 def test_a_walk_ends_with_the_base_at_rest(world):
     """A walk ends once the pelvis has stopped (footsteps.STILL_RADIUS for STILL_TIME): after a
     90° turn it rocked ±8 cm for 4 s, and an arm motion planned from it missed the handle."""
-    plan = turn_plan(world, math.radians(15.0), 3)
+    pairs = 4  # 45° at 11.25° per pair, within TALOS's max_turn (0.20 rad)
+    plan = turn_plan(world, math.radians(45.0) / pairs, pairs)
     started = world.time
     result = FootstepExecution(world, plan).run()
     assert result.status is OutcomeStatus.SUCCESS, result.reason
-    assert world.time - started <= 3 * 2 * world.profile.walking.step_duration + 1.0 + STILL_TIMEOUT + 0.1
+    assert world.time - started <= pairs * 2 * world.profile.walking.step_duration + 1.0 + STILL_TIMEOUT + 0.1
     at_end = world.base_pose()[:2, 3].copy()
     world.step(int(STILL_TIME * world.config.physics_rate))
     assert np.linalg.norm(world.base_pose()[:2, 3] - at_end) < 2 * STILL_RADIUS
