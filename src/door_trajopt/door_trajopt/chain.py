@@ -88,6 +88,15 @@ class ArmChain:
         """6×k: rows (linear, angular) world-aligned, columns the chain joints."""
         return self.kinematics.frame_jacobian(self.full(chain_q), self.tcp_frame)[:, self.indices]
 
+    def point(self, chain_q: np.ndarray, frame: str) -> np.ndarray:
+        """Origin of ``frame`` (base frame): forward kinematics only, no Jacobian pass."""
+        point: np.ndarray = self.kinematics.frame_pose(self.full(chain_q), frame)[:3, 3]
+        return point
+
+    def com(self, chain_q: np.ndarray) -> np.ndarray:
+        """Whole-body centre of mass (base frame), without its Jacobian."""
+        return self.kinematics.center_of_mass(self.full(chain_q))
+
     def point_and_jacobian(self, chain_q: np.ndarray, frame: str) -> tuple[np.ndarray, np.ndarray]:
         q = self.full(chain_q)
         return (self.kinematics.frame_pose(q, frame)[:3, 3],

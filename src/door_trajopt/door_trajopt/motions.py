@@ -213,6 +213,8 @@ def _com_in_polygon(setup: MotionSetup, margin: float) -> WaypointFunction:
     bounds = np.array([-x_min, x_max, -y_min, y_max])
 
     def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
+        if not need_jacobian:
+            return signs @ setup.chain.com(q[:k])[:2] - bounds + margin, None
         com, jacobian = setup.chain.com_and_jacobian(q[:k])
         value = signs @ com[:2] - bounds + margin
         return value, np.hstack([signs @ jacobian[:2], np.zeros((4, 2))])
@@ -226,6 +228,8 @@ def _elbow_clearance(setup: MotionSetup, options: MotionOptions) -> WaypointFunc
     face = setup.door.grasp_point - options.lever_standoff * normal
 
     def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
+        if not need_jacobian:
+            return np.array([options.wall_clearance - (setup.chain.point(q[:k], frame) - face) @ normal]), None
         point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
         value = np.array([options.wall_clearance - (point - face) @ normal])
         return value, np.hstack([-(normal @ jacobian)[None, :], np.zeros((1, 2))])
@@ -256,8 +260,10 @@ def _head_clearance(setup: MotionSetup, options: MotionOptions) -> WaypointFunct
     door = setup.door
 
     def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
-        point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
         normal = door.leaf_rotation(q[k]) @ door.normal
+        if not need_jacobian:
+            return np.array([options.head_clearance - (setup.chain.point(q[:k], frame) - door.hinge_point) @ normal]), None
+        point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
         offset = point - door.hinge_point
         value = np.array([options.head_clearance - offset @ normal])
         d_normal = door.hinge_sign * np.cross(UP, normal)
@@ -615,6 +621,8 @@ def _leaf_plane_distance(setup: MotionSetup, distance: float) -> WaypointFunctio
         point = setup.chain.tcp_pose(q[:k])[:3, 3]
         normal = door.leaf_rotation(q[k]) @ door.normal
         value = np.array([(point - door.hinge_point) @ normal - distance])
+        if not need_jacobian:
+            return value, None
         return value, np.concatenate([normal @ setup.chain.tcp_jacobian(q[:k])[:3], [0.0, 0.0]])[None, :]
     return function
 
@@ -640,15 +648,16 @@ def _along_wall_below(setup: MotionSetup, frames: tuple[str, ...], limit: float,
     def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
         values, rows = [], []
         for frame in frames:
-            point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
+            point = setup.chain.point(q[:k], frame)
             value, gradient = (point - hinge) @ along - limit, along
             if relaxation is not None:
                 ahead = (point - relaxation.face) @ relaxation.normal - relaxation.free
                 if ahead > 0.0:
                     value, gradient = value - relaxation.slope * ahead, along - relaxation.slope * relaxation.normal
             values.append(value)
-            rows.append(np.concatenate([gradient @ jacobian, np.zeros(2)]))
-        return np.array(values), np.array(rows)
+            if need_jacobian:
+                rows.append(np.concatenate([gradient @ setup.chain.point_and_jacobian(q[:k], frame)[1], np.zeros(2)]))
+        return np.array(values), (np.array(rows) if need_jacobian else None)
     return function
 
 
