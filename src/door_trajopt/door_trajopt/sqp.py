@@ -280,6 +280,7 @@ class SqpSolver(BackendSolver[SqpOptions]):
         # slack layout for the l1 mode and elastic re-solves; HARD solves without slacks
         self._layouts = {slacks: QpLayout.build(*patterns, slacks=slacks) for slacks in (True, False)}
         self._qps: dict[bool, osqp.OSQP] = {}
+        self._loaded: dict[bool, ConvexModel] = {}  # the model whose P and A each workspace holds
 
     def _hessian_pattern(self) -> sp.csr_matrix:
         residual = self._evaluator.objective.residual_pattern().astype(np.float64)
@@ -557,7 +558,13 @@ class SqpSolver(BackendSolver[SqpOptions]):
     def _load(
         self, model: ConvexModel, state: SqpState, shift: ConstraintShift, slacks: bool
     ) -> osqp.OSQP:
-        """Set OSQP up on first use of a layout; afterwards only ``update`` the values."""
+        """Set OSQP up on first use of a layout; afterwards only ``update`` the values.
+
+        ``P`` and ``A`` belong to the model: the second-order correction and the retries
+        after a rejected step solve the same model again with new ``q``, ``l``, ``u``
+        only. Those re-solves keep the matrices (and OSQP its KKT factorisation, which
+        a matrix update redoes even for unchanged values): two thirds of a push's QPs.
+        """
         layout, options = self._layouts[slacks], self._options
         point = model.point
         q = layout.linear_term(point.gradient, state.penalty)
@@ -566,11 +573,14 @@ class SqpSolver(BackendSolver[SqpOptions]):
         workspace = self._qps.get(slacks)
         if workspace is None:
             self._qps[slacks] = self._setup(model, q, lower, upper, layout)
+            self._loaded[slacks] = model
             return self._qps[slacks]
-        changes = {"q": q, "l": lower, "u": upper,
-                   "Ax": layout.a_values(point.equality_jacobian, point.inequality_jacobian)}
-        if model.hessian is not self._quadratic_hessian:  # Gauss-Newton terms changed P
-            changes["Px"] = layout.p_values(model.hessian, options.slack_curvature)
+        changes = {"q": q, "l": lower, "u": upper}
+        if self._loaded.get(slacks) is not model:
+            changes["Ax"] = layout.a_values(point.equality_jacobian, point.inequality_jacobian)
+            if model.hessian is not self._quadratic_hessian:  # Gauss-Newton terms changed P
+                changes["Px"] = layout.p_values(model.hessian, options.slack_curvature)
+            self._loaded[slacks] = model
         workspace.update(**changes)
         return workspace
 
