@@ -20,7 +20,8 @@ to a standstill 5 mm off, and every solve ran its 150 iterations.)
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -28,7 +29,7 @@ from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import rotation_vector
 from door_trajopt.problem import TrajoptError
 
-__all__ = ["IkOptions", "IkResult", "pose_error", "solve_ik", "solve_ik_multistart"]
+__all__ = ["IkOptions", "IkResult", "pose_error", "solve_ik", "solve_ik_batch", "solve_ik_multistart"]
 
 
 @dataclass(frozen=True)
@@ -64,56 +65,172 @@ def pose_error(current: np.ndarray, target: np.ndarray) -> np.ndarray:
 def solve_ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray,
              options: IkOptions = IkOptions(), mask: np.ndarray | None = None) -> IkResult:
     """IK of the TCP to ``target``; ``mask`` (6,) of 0/1 selects the pose rows that matter."""
+    return solve_ik_batch(chain, target, [seed], options, mask)[0]
+
+
+def solve_ik_batch(chain: ArmChain, target: np.ndarray, seeds: Sequence[np.ndarray],
+                   options: IkOptions = IkOptions(), mask: np.ndarray | None = None,
+                   accept: Callable[[IkResult], bool] | None = None) -> list[IkResult]:
+    """:func:`solve_ik` from each of ``seeds`` (at least one), all iterated in lock step.
+
+    Each seed follows exactly its own iteration (its own stops, its own centring switch);
+    only the linear algebra of one iteration is done for all running seeds at once (one
+    stacked SVD instead of one per seed and freezing pass: numpy's call overhead on a
+    6×9 matrix is several times its arithmetic). The forward kinematics stay per seed.
+
+    With ``accept``, what trying the seeds one by one up to the first accepted result
+    would give: the results of the seeds up to and including the first one (in seed order)
+    whose result ``accept`` takes, or of all seeds when none is taken. A seed after an
+    accepted one is dropped at once; the iteration goes on only while an earlier seed may
+    still be taken.
+    """
     rows = np.ones(6, dtype=bool) if mask is None else np.asarray(mask, dtype=bool)
-    q = np.clip(np.asarray(seed, dtype=float), chain.lower, chain.upper)
-    error = pose_error(chain.tcp_pose(q), target) * rows
-    size, centring = _error_size(error), options.centring_gain
+    limits = _Limits(chain.lower, chain.upper)
+    q = np.clip(np.array(seeds, dtype=float).reshape(len(seeds), -1), limits.lower, limits.upper)
+    running, finished = _Running.start(chain, target, rows, q, options), _Finished(options, accept)
     for _ in range(options.max_iterations):
-        if (np.linalg.norm(error[:3]) < options.position_tolerance
-                and np.linalg.norm(error[3:]) < options.rotation_tolerance):
+        running = finished.add(running, running.within_tolerance(options))
+        if running.index.size == 0:
             break
-        step = _limited_step(chain, chain.tcp_jacobian(q)[rows], error[rows], q, centring, options)
-        q = np.clip(q + step, chain.lower, chain.upper)
-        error = pose_error(chain.tcp_pose(q), target) * rows
-        previous, size = size, _error_size(error)
-        if size > (1.0 - options.progress) * previous:
-            if centring == 0.0:
-                break
-            centring = 0.0
+        step = _limited_steps(limits, running.jacobian, running.error[:, rows], running.q, running.centring, options)
+        previous = running.size
+        running = _Running.at(chain, target, rows, np.clip(running.q + step, limits.lower, limits.upper),
+                              running.index, running.centring)
+        stalled = running.size > (1.0 - options.progress) * previous
+        out_of_reach = stalled & (running.centring == 0.0)  # stalled on the pose alone
+        running = replace(running, centring=np.where(stalled, 0.0, running.centring))  # with the pull: pose alone
+        running = finished.add(running, out_of_reach)
+    finished.add(running, np.ones(running.index.size, dtype=bool))
+    return finished.in_seed_order()
+
+
+@dataclass(frozen=True)
+class _Limits:
+    """The chain's joint limits, looked up once per solve."""
+
+    lower: np.ndarray
+    upper: np.ndarray
+
+    @property
+    def middle(self) -> np.ndarray:
+        middle: np.ndarray = 0.5 * (self.lower + self.upper)
+        return middle
+
+
+@dataclass(frozen=True)
+class _Running:
+    """The seeds of :func:`solve_ik_batch` still iterating: their numbers among the seeds,
+    configurations (S, k), masked pose errors (S, 6), the errors' position and rotation
+    norms, TCP Jacobians of the masked rows (S, r, k), and null-space pull gains."""
+
+    index: np.ndarray
+    q: np.ndarray
+    error: np.ndarray
+    position: np.ndarray
+    rotation: np.ndarray
+    jacobian: np.ndarray
+    centring: np.ndarray
+
+    @classmethod
+    def start(cls, chain: ArmChain, target: np.ndarray, rows: np.ndarray, q: np.ndarray,
+              options: IkOptions) -> _Running:
+        return cls.at(chain, target, rows, q, np.arange(len(q)), np.full(len(q), options.centring_gain))
+
+    @classmethod
+    def at(cls, chain: ArmChain, target: np.ndarray, rows: np.ndarray, q: np.ndarray, index: np.ndarray,
+           centring: np.ndarray) -> _Running:
+        """The seeds at configurations ``q``: one forward pass each for the pose and the Jacobian."""
+        error, jacobian = np.empty((len(q), 6)), np.empty((len(q), int(rows.sum()), q.shape[1]))
+        for seed, configuration in enumerate(q):
+            error[seed] = pose_error(chain.tcp_pose(configuration), target) * rows
+            jacobian[seed] = chain.tcp_jacobian(configuration)[rows]
+        return cls(index, q, error, np.linalg.norm(error[:, :3], axis=1), np.linalg.norm(error[:, 3:], axis=1),
+                   jacobian, centring)
+
+    @property
+    def size(self) -> np.ndarray:
+        """|e_p| + 0.1 |e_R| (m; 0.1 m per rad) of each seed, as :attr:`IkResult.miss`."""
+        size: np.ndarray = self.position + 0.1 * self.rotation
+        return size
+
+    def within_tolerance(self, options: IkOptions) -> np.ndarray:
+        within: np.ndarray = (self.position < options.position_tolerance) & (self.rotation < options.rotation_tolerance)
+        return within
+
+    def subset(self, kept: np.ndarray) -> _Running:
+        """The seeds flagged in ``kept``."""
+        return _Running(self.index[kept], self.q[kept], self.error[kept], self.position[kept], self.rotation[kept],
+                        self.jacobian[kept], self.centring[kept])
+
+
+@dataclass
+class _Finished:
+    """The results of the seeds of :func:`solve_ik_batch` that stopped (by seed number) and the
+    first one ``accept`` took (mutable: filled as the seeds stop)."""
+
+    options: IkOptions
+    accept: Callable[[IkResult], bool] | None
+    results: dict[int, IkResult] = field(default_factory=dict)
+    first_accepted: int | None = None
+
+    def add(self, running: _Running, stopped: np.ndarray) -> _Running:
+        """Record the ``stopped`` seeds' results; the seeds still worth iterating: not stopped,
+        and before the first accepted one."""
+        for seed in np.flatnonzero(stopped):
+            number = int(running.index[seed])
+            result = self.results[number] = _result(running.q[seed], running.error[seed], self.options)
+            if self.accept is not None and (self.first_accepted is None or number < self.first_accepted) \
+                    and self.accept(result):
+                self.first_accepted = number
+        kept = ~stopped
+        if self.first_accepted is not None:
+            kept &= running.index < self.first_accepted
+        return running if kept.all() else running.subset(kept)
+
+    def in_seed_order(self) -> list[IkResult]:
+        """The results up to the first accepted seed (all seeds before it have stopped), or all."""
+        last = max(self.results) if self.first_accepted is None else self.first_accepted
+        return [self.results[number] for number in range(last + 1)]
+
+
+def _result(chain_q: np.ndarray, error: np.ndarray, options: IkOptions) -> IkResult:
     position, rotation = float(np.linalg.norm(error[:3])), float(np.linalg.norm(error[3:]))
-    return IkResult(q, position, rotation,
+    return IkResult(chain_q, position, rotation,
                     position < options.position_tolerance * 10 and rotation < options.rotation_tolerance * 10)
 
 
-def _error_size(error: np.ndarray) -> float:
-    """|e_p| + 0.1 |e_R| (m; 0.1 m per rad) of an error vector, as :attr:`IkResult.miss`."""
-    return float(np.linalg.norm(error[:3]) + 0.1 * np.linalg.norm(error[3:]))
-
-
-def _limited_step(chain: ArmChain, jacobian: np.ndarray, error: np.ndarray, q: np.ndarray,
-                  centring: float, options: IkOptions) -> np.ndarray:
-    """δq of the module docstring; joints pushed against their limits are frozen."""
-    free = np.ones(q.size, dtype=bool)
-    pull = centring * (0.5 * (chain.lower + chain.upper) - q)
-    step = np.zeros(q.size)
-    for _ in range(3):  # freezing a joint can make another one push out: a few passes
-        step = np.zeros(q.size)
-        step[free] = _task_and_null_space_step(jacobian[:, free], error, pull[free], options.damping)
-        blocked = free & (((q <= chain.lower) & (step < 0.0)) | ((q >= chain.upper) & (step > 0.0)))
-        if not blocked.any() or blocked.sum() == free.sum():
+def _limited_steps(limits: _Limits, jacobian: np.ndarray, error: np.ndarray, q: np.ndarray,
+                   centring: np.ndarray, options: IkOptions) -> np.ndarray:
+    """δq of the module docstring for each seed (rows of ``q``); joints pushed against their
+    limits are frozen, seed by seed, and that seed's step solved again. A frozen joint's
+    column of J and its pull are zeroed, which is the same step as dropping them: J's row
+    space, and so V_r, then has no component along that joint."""
+    at_lower, at_upper = q <= limits.lower, q >= limits.upper
+    pull = centring[:, None] * (limits.middle - q)
+    step = _task_and_null_space_steps(jacobian, error, pull, options.damping)
+    free = np.ones(q.shape, dtype=bool)
+    for _ in range(2):  # freezing a joint can make another one push out: a few passes
+        blocked = free & ((at_lower & (step < 0.0)) | (at_upper & (step > 0.0)))
+        again = blocked.any(axis=1) & (blocked != free).any(axis=1)  # some, not all, free joints blocked
+        if not again.any():
             break
-        free &= ~blocked
-    largest = np.max(np.abs(step))
-    return step * (options.max_step / largest) if largest > options.max_step else step
+        free[again] &= ~blocked[again]
+        kept = free[again]
+        step[again] = kept * _task_and_null_space_steps(jacobian[again] * kept[:, None, :], error[again],
+                                                        pull[again] * kept, options.damping)
+    largest = np.max(np.abs(step), axis=1)
+    limited: np.ndarray = step * (options.max_step / np.maximum(largest, options.max_step))[:, None]
+    return limited
 
 
-def _task_and_null_space_step(jacobian: np.ndarray, error: np.ndarray, pull: np.ndarray,
-                              damping: float) -> np.ndarray:
-    """J⁺e + (I − V_r V_rᵀ) pull from one SVD of J."""
+def _task_and_null_space_steps(jacobian: np.ndarray, error: np.ndarray, pull: np.ndarray,
+                               damping: float) -> np.ndarray:
+    """J⁺e + (I − V_r V_rᵀ) pull from one SVD of each J (stacked: ``jacobian`` (S, r, k))."""
     left, singular, right_t = np.linalg.svd(jacobian, full_matrices=False)
-    task = right_t.T @ ((singular / (singular**2 + damping**2)) * (left.T @ error))
-    ranged = right_t[singular > 1e-9 * max(float(singular[0]), 1e-300)]
-    step: np.ndarray = task + pull - ranged.T @ (ranged @ pull)
+    task = np.einsum("sji,sj->si", right_t,
+                     (singular / (singular**2 + damping**2)) * np.einsum("sji,sj->si", left, error))
+    ranged = right_t * (singular > 1e-9 * np.maximum(singular[:, :1], 1e-300))[:, :, None]
+    step: np.ndarray = task + pull - np.einsum("sji,sj->si", ranged, np.einsum("sji,si->sj", ranged, pull))
     return step
 
 

@@ -28,7 +28,7 @@ from door_contract.ranges import FieldRange, check_in_range
 from door_contract.vocabulary import Motion, Side
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import UP, DoorModel, rotation_vector
-from door_trajopt.ik import IkOptions, solve_ik
+from door_trajopt.ik import IkOptions, IkResult, solve_ik, solve_ik_batch
 from door_trajopt.problem import (
     Constraint,
     ConstraintKind,
@@ -697,16 +697,17 @@ def _ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray, mask: np.ndarray 
     from its stop, and no turn of the handle was feasible from that grasp. There no solution
     keeps the margin, so the choice is among the converged ones: with 6 random seeds the left
     hand found the branch that turns and the right hand (mirrored doors) did not; with 24
-    both do (the seeds are only all tried when no early one is good, ~1.5 ms each)."""
+    both do. The seeds are solved together (:func:`solve_ik_batch`, with the same choice as one
+    by one: the 26 seeds one by one took 42 ms of the sideways approach's 58 ms guess)."""
     rng = np.random.default_rng(0)
     seeds = [seed, chain.chain_of(chain.kinematics.nominal_q)] + [rng.uniform(chain.lower, chain.upper)
                                                                   for _ in range(KEY_POSE_RANDOM_SEEDS)]
-    solutions = []
-    for start in seeds:
-        solution = solve_ik(chain, target, start, mask=mask)
-        if solution.converged and _limit_margin(chain, solution.chain_q) >= KEY_POSE_MARGIN:
-            return solution.chain_q
-        solutions.append(solution)
+
+    def keeps_margin(solution: IkResult) -> bool:
+        return solution.converged and _limit_margin(chain, solution.chain_q) >= KEY_POSE_MARGIN
+    solutions = solve_ik_batch(chain, target, seeds, mask=mask, accept=keeps_margin)
+    if keeps_margin(solutions[-1]):
+        return solutions[-1].chain_q
     converged = [solution.chain_q for solution in solutions if solution.converged]
     if converged:
         return max(converged, key=lambda q: _limit_margin(chain, q))
