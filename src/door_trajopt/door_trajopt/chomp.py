@@ -174,10 +174,10 @@ def robust_cholesky(schur: FloatArray) -> tuple[FloatArray, bool]:
 
 
 def unit_rows(indices: IntArray, sign: float, n_variables: int) -> sp.csr_matrix:
-    """Rows ``sign * e_i^T`` for joint-limit variables."""
-    rows = np.arange(indices.size)
-    data = np.full(indices.size, sign)
-    return sp.csr_matrix((data, (rows, indices)), shape=(indices.size, n_variables))
+    """Rows ``sign * e_i^T`` for joint-limit variables, built as CSR directly (one entry per
+    row; from coordinates, scipy's conversion took a sixth of a sideways ready_to_walk)."""
+    return sp.csr_matrix((np.full(indices.size, sign), np.asarray(indices, dtype=np.int64),
+                          np.arange(indices.size + 1)), shape=(indices.size, n_variables))
 
 
 class ChompSolver(BackendSolver[ChompOptions]):
