@@ -8,6 +8,7 @@ configuration the chain was built from (the measured posture). Wraps
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
@@ -36,8 +37,9 @@ class ArmChain:
     def size(self) -> int:
         return int(self.indices.size)
 
-    @property
+    @cached_property
     def tcp_frame(self) -> str:
+        """The side's TCP frame (looked up once: the constraints ask for it at every waypoint)."""
         return self.kinematics.profile.tcp_frame(self.side)
 
     @property
@@ -57,14 +59,18 @@ class ArmChain:
         frame: str = next(f.name for f in model.frames if f.parentJoint == joint_id and f.type.name == "BODY")
         return frame
 
-    @property
+    @cached_property
     def lower(self) -> np.ndarray:
+        """The chain joints' lower limits (looked up once, read-only)."""
         limits: np.ndarray = self.kinematics.lower_limits[self.indices]
+        limits.setflags(write=False)
         return limits
 
-    @property
+    @cached_property
     def upper(self) -> np.ndarray:
+        """The chain joints' upper limits (looked up once, read-only)."""
         limits: np.ndarray = self.kinematics.upper_limits[self.indices]
+        limits.setflags(write=False)
         return limits
 
     @property

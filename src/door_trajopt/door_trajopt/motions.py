@@ -646,18 +646,21 @@ def _along_wall_below(setup: MotionSetup, frames: tuple[str, ...], limit: float,
     k, along, hinge = setup.chain.size, setup.door.along, setup.door.hinge_point
 
     def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
-        values, rows = [], []
-        for frame in frames:
-            point = setup.chain.point(q[:k], frame)
-            value, gradient = (point - hinge) @ along - limit, along
+        values, rows = np.empty(len(frames)), np.zeros((len(frames), k + 2)) if need_jacobian else None
+        for index, frame in enumerate(frames):
+            if rows is None:
+                point = setup.chain.point(q[:k], frame)
+            else:
+                point, jacobian = setup.chain.point_and_jacobian(q[:k], frame)
+            values[index], gradient = (point - hinge) @ along - limit, along
             if relaxation is not None:
                 ahead = (point - relaxation.face) @ relaxation.normal - relaxation.free
                 if ahead > 0.0:
-                    value, gradient = value - relaxation.slope * ahead, along - relaxation.slope * relaxation.normal
-            values.append(value)
-            if need_jacobian:
-                rows.append(np.concatenate([gradient @ setup.chain.point_and_jacobian(q[:k], frame)[1], np.zeros(2)]))
-        return np.array(values), (np.array(rows) if need_jacobian else None)
+                    values[index] -= relaxation.slope * ahead
+                    gradient = along - relaxation.slope * relaxation.normal
+            if rows is not None:
+                rows[index, :k] = gradient @ jacobian
+        return values, rows
     return function
 
 
