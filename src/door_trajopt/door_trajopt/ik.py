@@ -21,7 +21,7 @@ to a standstill 5 mm off, and every solve ran its 150 iterations.)
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -93,13 +93,12 @@ def solve_ik_batch(chain: ArmChain, target: np.ndarray, seeds: Sequence[np.ndarr
         if running.index.size == 0:
             break
         step = _limited_steps(limits, running.jacobian, running.error[:, rows], running.q, running.centring, options)
-        previous = running.size
-        running = _Running.at(chain, target, rows, np.clip(running.q + step, limits.lower, limits.upper),
-                              running.index, running.centring)
-        stalled = running.size > (1.0 - options.progress) * previous
+        moved = _Running.at(chain, target, rows, np.clip(running.q + step, limits.lower, limits.upper),
+                            running.index, running.centring)
+        stalled = moved.size > (1.0 - options.progress) * running.size
         out_of_reach = stalled & (running.centring == 0.0)  # stalled on the pose alone
-        running = replace(running, centring=np.where(stalled, 0.0, running.centring))  # with the pull: pose alone
-        running = finished.add(running, out_of_reach)
+        moved.centring[stalled] = 0.0  # stalled with the pull: finish the pose alone
+        running = finished.add(moved, out_of_reach)
     finished.add(running, np.ones(running.index.size, dtype=bool))
     return finished.in_seed_order()
 
@@ -139,13 +138,14 @@ class _Running:
     @classmethod
     def at(cls, chain: ArmChain, target: np.ndarray, rows: np.ndarray, q: np.ndarray, index: np.ndarray,
            centring: np.ndarray) -> _Running:
-        """The seeds at configurations ``q``: one forward pass each for the pose and the Jacobian."""
+        """The seeds at configurations ``q`` (one forward pass each for the pose and the Jacobian),
+        with a copy of ``centring`` (the solver switches a seed's pull off in it)."""
         error, jacobian = np.empty((len(q), 6)), np.empty((len(q), int(rows.sum()), q.shape[1]))
         for seed, configuration in enumerate(q):
             error[seed] = pose_error(chain.tcp_pose(configuration), target) * rows
             jacobian[seed] = chain.tcp_jacobian(configuration)[rows]
-        return cls(index, q, error, np.linalg.norm(error[:, :3], axis=1), np.linalg.norm(error[:, 3:], axis=1),
-                   jacobian, centring)
+        norms = np.sqrt(np.square(error.reshape(len(q), 2, 3)).sum(axis=2))  # (|e_p|, |e_R|) per seed
+        return cls(index, q, error, norms[:, 0], norms[:, 1], jacobian, centring.copy())
 
     @property
     def size(self) -> np.ndarray:
@@ -176,6 +176,8 @@ class _Finished:
     def add(self, running: _Running, stopped: np.ndarray) -> _Running:
         """Record the ``stopped`` seeds' results; the seeds still worth iterating: not stopped,
         and before the first accepted one."""
+        if not stopped.any():  # (the running seeds were cut at the first accepted one when it stopped)
+            return running
         for seed in np.flatnonzero(stopped):
             number = int(running.index[seed])
             result = self.results[number] = _result(running.q[seed], running.error[seed], self.options)
@@ -227,10 +229,10 @@ def _task_and_null_space_steps(jacobian: np.ndarray, error: np.ndarray, pull: np
                                damping: float) -> np.ndarray:
     """J⁺e + (I − V_r V_rᵀ) pull from one SVD of each J (stacked: ``jacobian`` (S, r, k))."""
     left, singular, right_t = np.linalg.svd(jacobian, full_matrices=False)
-    task = np.einsum("sji,sj->si", right_t,
-                     (singular / (singular**2 + damping**2)) * np.einsum("sji,sj->si", left, error))
-    ranged = right_t * (singular > 1e-9 * np.maximum(singular[:, :1], 1e-300))[:, :, None]
-    step: np.ndarray = task + pull - np.einsum("sji,sj->si", ranged, np.einsum("sji,si->sj", ranged, pull))
+    weighted = (singular / (singular**2 + damping**2)) * (error[:, None, :] @ left)[:, 0]  # Σ(Σ² + λ²)⁻¹ Uᵀe
+    ranged = right_t * (singular > 1e-9 * np.maximum(singular[:, :1], 1e-300))[:, :, None]  # V_rᵀ
+    step: np.ndarray = (weighted[:, None, :] @ right_t)[:, 0] + pull - \
+        ((ranged @ pull[:, :, None]).transpose(0, 2, 1) @ ranged)[:, 0]
     return step
 
 
