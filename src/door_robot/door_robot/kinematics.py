@@ -141,6 +141,22 @@ class RobotKinematics:
                                                     pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
         return jacobian
 
+    def frame_pose_and_jacobian(self, q: np.ndarray, frame: str) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`frame_pose` and :meth:`frame_jacobian` of ``frame`` at a new ``q`` from one
+        joint-Jacobian pass, which places the joints as it goes (no forward pass before it)."""
+        frame_id = self.frame_id(frame)
+        evaluated = self._evaluated
+        key = np.asarray(q, dtype=float).tobytes()
+        if key != evaluated.key or not evaluated.joint_jacobians:
+            if key != evaluated.key:
+                evaluated.key, evaluated.com, evaluated.com_jacobian = key, None, None
+            pin.computeJointJacobians(self.model, self.data, q)
+            evaluated.joint_jacobians = True
+        pose: np.ndarray = pin.updateFramePlacement(self.model, self.data, frame_id).homogeneous.copy()
+        jacobian: np.ndarray = pin.getFrameJacobian(self.model, self.data, frame_id,
+                                                    pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
+        return pose, jacobian
+
     def center_of_mass(self, q: np.ndarray) -> np.ndarray:
         """Whole-body centre of mass (m, base frame): c = Σ mᵢ cᵢ / Σ mᵢ."""
         evaluated = self._at(q)

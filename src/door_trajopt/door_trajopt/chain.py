@@ -94,6 +94,11 @@ class ArmChain:
         """6×k: rows (linear, angular) world-aligned, columns the chain joints."""
         return self.kinematics.frame_jacobian(self.full(chain_q), self.tcp_frame)[:, self.indices]
 
+    def tcp_pose_and_jacobian(self, chain_q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """:meth:`tcp_pose` and :meth:`tcp_jacobian` together (one kinematics pass)."""
+        pose, jacobian = self.kinematics.frame_pose_and_jacobian(self.full(chain_q), self.tcp_frame)
+        return pose, jacobian[:, self.indices]
+
     def point(self, chain_q: np.ndarray, frame: str) -> np.ndarray:
         """Origin of ``frame`` (base frame): forward kinematics only, no Jacobian pass."""
         point: np.ndarray = self.kinematics.frame_pose(self.full(chain_q), frame)[:3, 3]

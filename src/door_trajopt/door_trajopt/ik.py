@@ -142,8 +142,8 @@ class _Running:
         with a copy of ``centring`` (the solver switches a seed's pull off in it)."""
         error, jacobian = np.empty((len(q), 6)), np.empty((len(q), int(rows.sum()), q.shape[1]))
         for seed, configuration in enumerate(q):
-            error[seed] = pose_error(chain.tcp_pose(configuration), target) * rows
-            jacobian[seed] = chain.tcp_jacobian(configuration)[rows]
+            pose, tcp_jacobian = chain.tcp_pose_and_jacobian(configuration)
+            error[seed], jacobian[seed] = pose_error(pose, target) * rows, tcp_jacobian[rows]
         norms = np.sqrt(np.square(error.reshape(len(q), 2, 3)).sum(axis=2))  # (|e_p|, |e_R|) per seed
         return cls(index, q, error, norms[:, 0], norms[:, 1], jacobian, centring.copy())
 

@@ -161,12 +161,12 @@ def _tcp_target_error(chain: ArmChain, target_of: _Target, mask: np.ndarray) -> 
     k = chain.size
 
     def function(q: np.ndarray, need_jacobian: bool) -> WaypointValue:
-        pose = chain.tcp_pose(q[:k])
+        pose, tcp_jacobian = chain.tcp_pose_and_jacobian(q[:k]) if need_jacobian else (chain.tcp_pose(q[:k]), None)
         target = target_of.pose(q[k], q[k + 1])
         error = np.concatenate([pose[:3, 3] - target[:3, 3], rotation_vector(pose[:3, :3] @ target[:3, :3].T)])
-        if not need_jacobian:
+        if tcp_jacobian is None:
             return error[rows], None
-        jacobian = np.hstack([chain.tcp_jacobian(q[:k]), -target_of.derivatives(q[k], q[k + 1])])
+        jacobian = np.hstack([tcp_jacobian, -target_of.derivatives(q[k], q[k + 1])])
         return error[rows], jacobian[rows]
     return function
 
