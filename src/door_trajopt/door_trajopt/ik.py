@@ -71,7 +71,8 @@ def solve_ik(chain: ArmChain, target: np.ndarray, seed: np.ndarray,
 def solve_ik_batch(chain: ArmChain, target: np.ndarray, seeds: Sequence[np.ndarray],
                    options: IkOptions = IkOptions(), mask: np.ndarray | None = None,
                    accept: Callable[[IkResult], bool] | None = None) -> list[IkResult]:
-    """:func:`solve_ik` from each of ``seeds`` (at least one), all iterated in lock step.
+    """:func:`solve_ik` from each of ``seeds`` (at least one), all iterated in lock step;
+    ``target`` is one pose (4×4) for all seeds or one per seed (S×4×4).
 
     Each seed follows exactly its own iteration (its own stops, its own centring switch);
     only the linear algebra of one iteration is done for all running seeds at once (one
@@ -87,13 +88,14 @@ def solve_ik_batch(chain: ArmChain, target: np.ndarray, seeds: Sequence[np.ndarr
     rows = np.ones(6, dtype=bool) if mask is None else np.asarray(mask, dtype=bool)
     limits = _Limits(chain.lower, chain.upper)
     q = np.clip(np.array(seeds, dtype=float).reshape(len(seeds), -1), limits.lower, limits.upper)
-    running, finished = _Running.start(chain, target, rows, q, options), _Finished(options, accept)
+    targets = np.broadcast_to(target, (len(q), 4, 4))
+    running, finished = _Running.start(chain, targets, rows, q, options), _Finished(options, accept)
     for _ in range(options.max_iterations):
         running = finished.add(running, running.within_tolerance(options))
         if running.index.size == 0:
             break
         step = _limited_steps(limits, running.jacobian, running.error[:, rows], running.q, running.centring, options)
-        moved = _Running.at(chain, target, rows, np.clip(running.q + step, limits.lower, limits.upper),
+        moved = _Running.at(chain, targets, rows, np.clip(running.q + step, limits.lower, limits.upper),
                             running.index, running.centring)
         stalled = moved.size > (1.0 - options.progress) * running.size
         out_of_reach = stalled & (running.centring == 0.0)  # stalled on the pose alone
@@ -131,19 +133,20 @@ class _Running:
     centring: np.ndarray
 
     @classmethod
-    def start(cls, chain: ArmChain, target: np.ndarray, rows: np.ndarray, q: np.ndarray,
+    def start(cls, chain: ArmChain, targets: np.ndarray, rows: np.ndarray, q: np.ndarray,
               options: IkOptions) -> _Running:
-        return cls.at(chain, target, rows, q, np.arange(len(q)), np.full(len(q), options.centring_gain))
+        return cls.at(chain, targets, rows, q, np.arange(len(q)), np.full(len(q), options.centring_gain))
 
     @classmethod
-    def at(cls, chain: ArmChain, target: np.ndarray, rows: np.ndarray, q: np.ndarray, index: np.ndarray,
+    def at(cls, chain: ArmChain, targets: np.ndarray, rows: np.ndarray, q: np.ndarray, index: np.ndarray,
            centring: np.ndarray) -> _Running:
-        """The seeds at configurations ``q`` (one forward pass each for the pose and the Jacobian),
-        with a copy of ``centring`` (the solver switches a seed's pull off in it)."""
+        """The seeds numbered ``index`` at configurations ``q`` (one kinematics pass each for the
+        pose and the Jacobian; ``targets``: every seed's), with a copy of ``centring`` (the solver
+        switches a seed's pull off in it)."""
         error, jacobian = np.empty((len(q), 6)), np.empty((len(q), int(rows.sum()), q.shape[1]))
-        for seed, configuration in enumerate(q):
+        for seed, (number, configuration) in enumerate(zip(index, q, strict=True)):
             pose, tcp_jacobian = chain.tcp_pose_and_jacobian(configuration)
-            error[seed], jacobian[seed] = pose_error(pose, target) * rows, tcp_jacobian[rows]
+            error[seed], jacobian[seed] = pose_error(pose, targets[number]) * rows, tcp_jacobian[rows]
         norms = np.sqrt(np.square(error.reshape(len(q), 2, 3)).sum(axis=2))  # (|e_p|, |e_R|) per seed
         return cls(index, q, error, norms[:, 0], norms[:, 1], jacobian, centring.copy())
 
