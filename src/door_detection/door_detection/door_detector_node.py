@@ -132,7 +132,7 @@ class DoorDetectorNode(Node):
             self.estimate_pub.publish(String(data=encode(report.confirmed)))
             self.handle_pub.publish(matrix_to_pose_stamped(report.handle_pose, Frame.ODOM.value, stamp))
             self.marker_pub.publish(door_markers(report.confirmed))
-        if self.search and (look := self.search.after_frame(self.joints, report.seen is not None,
+        if self.search and (look := self.search.after_frame(stamp, self.joints, report.seen is not None,
                                                             report.confirmed is not None)):
             self.look_pub.publish(joint_path_to_msg(look.as_path()))  # the FSM sends it while DETECT_DOOR waits
             self.get_logger().info(f"no door confirmed: {look}", throttle_duration_sec=2.0)

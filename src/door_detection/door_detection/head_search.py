@@ -4,9 +4,15 @@
 from the frames the detector gets and the neck joints the robot reports. A search starts at
 the first frame without a confirmed door, from the head's pose then (its home view), and
 asks for a neck move (:class:`LookCommand`) each time a view is used up. A frame counts for a
-view only once the neck is there (within ``settle_tolerance`` of the view's targets), or
-after ``max_settle_frames`` frames anyway (a neck that cannot quite reach). A confirmed door
-ends the search where the head is; a search out of views looks home and starts over.
+view only once the neck is there (within ``settle_tolerance`` of the view's targets), or,
+for a neck that cannot quite reach, anyway after ``max_settle_frames`` frames taken once the
+move's own duration is over (frame stamps, robot clock). Counting those frames from the move's
+start instead left a view before the head got there whenever the move outlasted them: at the
+standing camera's 8 Hz, 6 frames are 0.75 s, a pan from +0.6 to −0.6 rad takes 2.4 s, and the
+search moved on while the head swept past the door (Monte-Carlo: two doors 0.4–0.5 rad aside
+never confirmed in three 60 s searches; whether frames were dropped under load decided it).
+A confirmed door ends the search where the head is; a search out of views looks home and
+starts over.
 
 The detector only asks: the FSM supervisor sends a move to the robot while DETECT_DOOR waits
 for an estimate and at no other time, so a paused, stopped or walking robot's head never
@@ -16,6 +22,7 @@ not asked for here: the graph's views are the neck's (``max_body_turns`` = 0).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
@@ -68,7 +75,7 @@ class HeadSearchOptions:
     settle_tolerance: float = 0.02
     """rad within which every neck joint must be of its target for a frame to count, (0, 0.5]."""
     max_settle_frames: int = 6
-    """Frames after a move that count anyway when the neck has not settled, [1, 100]."""
+    """Frames after a move's duration that count anyway when the neck has not settled, [1, 100]."""
     speed_scale: float = 0.5
     """Fraction of the neck joints' speed limits a move uses, (0, 1]."""
 
@@ -103,6 +110,7 @@ class HeadSearch:
         self._search: ViewSearch | None = None
         self._home: View | None = None
         self._unsettled = 0
+        self._arrival = -math.inf  # robot-clock time (s) the last move asked for should be over
 
     @property
     def searching(self) -> bool:
@@ -113,10 +121,11 @@ class HeadSearch:
         """The view being looked from (None: not searching)."""
         return None if self._search is None else self._search.view
 
-    def after_frame(self, joints: Mapping[str, float] | None, detected: bool, confirmed: bool) -> LookCommand | None:
-        """After a frame: ``detected``, it gave an estimate; ``confirmed``, the vote has a door;
-        ``joints``, the neck's measured positions (None: not known yet, nothing is asked).
-        Returns the neck move to ask for, if any."""
+    def after_frame(self, stamp: float, joints: Mapping[str, float] | None, detected: bool,
+                    confirmed: bool) -> LookCommand | None:
+        """After the frame taken at ``stamp`` (s, robot clock): ``detected``, it gave an estimate;
+        ``confirmed``, the vote has a door; ``joints``, the neck's measured positions (None: not
+        known yet, nothing is asked). Returns the neck move to ask for, if any."""
         if confirmed:
             self._search = None
             return None
@@ -128,6 +137,8 @@ class HeadSearch:
             self._unsettled = 0
         view = self._search.view
         if view is not None and not self._settled(view, joints):
+            if stamp < self._arrival:  # still moving as asked: the frame shows the way there
+                return None
             self._unsettled += 1
             if self._unsettled < self.options.max_settle_frames:
                 return None
@@ -138,7 +149,9 @@ class HeadSearch:
         following = self._search.view
         if following is None:  # out of views: back home, and a new search from there
             following, self._search = self._home or View(0.0, 0.0), None
-        return self._look(home_view(self.neck, joints), following)
+        look = self._look(home_view(self.neck, joints), following)
+        self._arrival = stamp + look.duration
+        return look
 
     def _settled(self, view: View, joints: Mapping[str, float]) -> bool:
         targets = view.joint_targets(self.neck)
