@@ -14,6 +14,7 @@ from pathlib import Path
 import pytest
 
 from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm
+from door_bringup.processes import signals_deferred
 
 
 def test_a_sigterm_raises_keyboard_interrupt_in_the_main_thread():
@@ -23,6 +24,24 @@ def test_a_sigterm_raises_keyboard_interrupt_in_the_main_thread():
         with pytest.raises(KeyboardInterrupt, match="SIGTERM"):
             os.kill(os.getpid(), signal.SIGTERM)
             time.sleep(5)  # not a synchronisation: the signal interrupts it at once
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def test_a_sigterm_while_a_child_starts_is_raised_once_the_child_is_kept():
+    """ProcessSupervisor.start holds a stop back until the new child is on its list: a SIGTERM
+    raised inside Popen lost the child, which ran on in a session of its own."""
+    previous = signal.getsignal(signal.SIGTERM)
+    kept = []
+    try:
+        interrupt_on_sigterm()
+        installed = signal.getsignal(signal.SIGTERM)
+        with pytest.raises(KeyboardInterrupt, match="SIGTERM"):
+            with signals_deferred():
+                os.kill(os.getpid(), signal.SIGTERM)
+                kept.append("child")  # reached: the signal waits for the block's end
+        assert kept == ["child"]
+        assert signal.getsignal(signal.SIGTERM) is installed  # the handler before the block is back
     finally:
         signal.signal(signal.SIGTERM, previous)
 

@@ -3,21 +3,52 @@
 ROS-free: each node is a child process in its own session, so a Ctrl-C in the terminal
 reaches only this supervisor, which then stops the children in order: SIGINT (rclpy's
 clean shutdown), then SIGTERM, then SIGKILL after the grace periods.
+
+A SIGINT or SIGTERM that arrives while a child is being started is handled once the child is
+on the list :meth:`ProcessSupervisor.stop` signals (:func:`signals_deferred`): raised inside
+``subprocess.Popen`` after the fork, its KeyboardInterrupt lost the Popen object, and the
+child, in a session of its own, ran on with nothing to stop it (seen once: a sim bridge still
+running 60 s after a Monte-Carlo's SIGTERM).
 """
 
 from __future__ import annotations
 
 import signal
 import subprocess
+import threading
 import time
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from door_bringup.graph_spec import NodeLaunch
 from door_bringup.workspace import Workspace
 
-__all__ = ["NodeProcess", "ProcessSupervisor"]
+__all__ = ["NodeProcess", "ProcessSupervisor", "signals_deferred"]
+
+DEFERRED_SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+
+@contextmanager
+def signals_deferred() -> Iterator[None]:
+    """SIGINT and SIGTERM arriving inside the block are re-raised when it ends, to the handlers
+    in place before it (the first one only: a stop is a stop). Python handles signals in the
+    main thread alone; elsewhere, or with a handler not set from Python, nothing is deferred."""
+    handlers = {sig: signal.getsignal(sig) for sig in DEFERRED_SIGNALS}
+    if threading.current_thread() is not threading.main_thread() or None in handlers.values():
+        yield
+        return
+    caught: list[int] = []
+    for sig in DEFERRED_SIGNALS:
+        signal.signal(sig, lambda number, _frame: caught.append(number))
+    try:
+        yield
+    finally:
+        for sig, handler in handlers.items():
+            signal.signal(sig, handler)
+        if caught:
+            signal.raise_signal(caught[0])
 
 
 @dataclass
@@ -51,10 +82,11 @@ class ProcessSupervisor:
             self.log_dir.mkdir(parents=True, exist_ok=True)
             log_path = self.log_dir / f"{launch.node_name}.log"
             output = log_path.open("w")
-        process = subprocess.Popen(command, env=self.workspace.environment(env), stdout=output,
-                                   stderr=subprocess.STDOUT if output else None, start_new_session=True)
-        child = NodeProcess(launch, process, log_path)
-        self.children.append(child)
+        with signals_deferred():  # a stop now finds the child on the list
+            process = subprocess.Popen(command, env=self.workspace.environment(env), stdout=output,
+                                       stderr=subprocess.STDOUT if output else None, start_new_session=True)
+            child = NodeProcess(launch, process, log_path)
+            self.children.append(child)
         return child
 
     def exited(self) -> list[NodeProcess]:
