@@ -129,29 +129,31 @@ class RobotKinematics:
         pose: np.ndarray = pin.updateFramePlacement(self.model, self.data, frame_id).homogeneous.copy()
         return pose
 
-    def frame_jacobian(self, q: np.ndarray, frame: str) -> np.ndarray:
-        """6×nq Jacobian (linear rows first) of ``frame``, LOCAL_WORLD_ALIGNED."""
-        frame_id = self.frame_id(frame)
-        evaluated = self._at(q)
+    def _with_joint_jacobians(self, q: np.ndarray) -> None:
+        """The joint Jacobians of ``q`` computed. Their pass places the joints as it goes, so a
+        new ``q`` needs no forward pass before it (``data.oMi`` then serves :meth:`frame_pose`)."""
+        evaluated = self._evaluated
+        key = np.asarray(q, dtype=float).tobytes()
+        if key != evaluated.key:
+            evaluated.key, evaluated.com, evaluated.com_jacobian = key, None, None
+            evaluated.joint_jacobians = False
         if not evaluated.joint_jacobians:
             pin.computeJointJacobians(self.model, self.data, q)
             evaluated.joint_jacobians = True
+
+    def frame_jacobian(self, q: np.ndarray, frame: str) -> np.ndarray:
+        """6×nq Jacobian (linear rows first) of ``frame``, LOCAL_WORLD_ALIGNED."""
+        frame_id = self.frame_id(frame)
+        self._with_joint_jacobians(q)
         pin.updateFramePlacement(self.model, self.data, frame_id)
         jacobian: np.ndarray = pin.getFrameJacobian(self.model, self.data, frame_id,
                                                     pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)
         return jacobian
 
     def frame_pose_and_jacobian(self, q: np.ndarray, frame: str) -> tuple[np.ndarray, np.ndarray]:
-        """:meth:`frame_pose` and :meth:`frame_jacobian` of ``frame`` at a new ``q`` from one
-        joint-Jacobian pass, which places the joints as it goes (no forward pass before it)."""
+        """:meth:`frame_pose` and :meth:`frame_jacobian` of ``frame`` from one joint-Jacobian pass."""
         frame_id = self.frame_id(frame)
-        evaluated = self._evaluated
-        key = np.asarray(q, dtype=float).tobytes()
-        if key != evaluated.key or not evaluated.joint_jacobians:
-            if key != evaluated.key:
-                evaluated.key, evaluated.com, evaluated.com_jacobian = key, None, None
-            pin.computeJointJacobians(self.model, self.data, q)
-            evaluated.joint_jacobians = True
+        self._with_joint_jacobians(q)
         pose: np.ndarray = pin.updateFramePlacement(self.model, self.data, frame_id).homogeneous.copy()
         jacobian: np.ndarray = pin.getFrameJacobian(self.model, self.data, frame_id,
                                                     pin.ReferenceFrame.LOCAL_WORLD_ALIGNED)

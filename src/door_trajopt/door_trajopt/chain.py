@@ -109,9 +109,8 @@ class ArmChain:
         return self.kinematics.center_of_mass(self.full(chain_q))
 
     def point_and_jacobian(self, chain_q: np.ndarray, frame: str) -> tuple[np.ndarray, np.ndarray]:
-        q = self.full(chain_q)
-        return (self.kinematics.frame_pose(q, frame)[:3, 3],
-                self.kinematics.frame_jacobian(q, frame)[:3, self.indices])
+        pose, jacobian = self.kinematics.frame_pose_and_jacobian(self.full(chain_q), frame)
+        return pose[:3, 3], jacobian[:3, self.indices]
 
     def com_and_jacobian(self, chain_q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         q = self.full(chain_q)
