@@ -13,8 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm
-from door_bringup.processes import signals_deferred
+from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm, signals_deferred
 
 
 def test_a_sigterm_raises_keyboard_interrupt_in_the_main_thread():

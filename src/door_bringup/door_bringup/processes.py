@@ -15,40 +15,16 @@ from __future__ import annotations
 
 import signal
 import subprocess
-import threading
 import time
-from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from door_bringup.graph_spec import NodeLaunch
+from door_bringup.interrupts import signals_deferred
 from door_bringup.workspace import Workspace
 
-__all__ = ["NodeProcess", "ProcessSupervisor", "signals_deferred"]
-
-DEFERRED_SIGNALS = (signal.SIGINT, signal.SIGTERM)
-
-
-@contextmanager
-def signals_deferred() -> Iterator[None]:
-    """SIGINT and SIGTERM arriving inside the block are re-raised when it ends, to the handlers
-    in place before it (the first one only: a stop is a stop). Python handles signals in the
-    main thread alone; elsewhere, or with a handler not set from Python, nothing is deferred."""
-    handlers = {sig: signal.getsignal(sig) for sig in DEFERRED_SIGNALS}
-    if threading.current_thread() is not threading.main_thread() or None in handlers.values():
-        yield
-        return
-    caught: list[int] = []
-    for sig in DEFERRED_SIGNALS:
-        signal.signal(sig, lambda number, _frame: caught.append(number))
-    try:
-        yield
-    finally:
-        for sig, handler in handlers.items():
-            signal.signal(sig, handler)
-        if caught:
-            signal.raise_signal(caught[0])
+__all__ = ["NodeProcess", "ProcessSupervisor"]
 
 
 @dataclass
