@@ -61,7 +61,7 @@ from door_trajopt.result import OptimizationResult
 from door_trajopt.validation import FieldRange, at_least, check_ranges
 
 __all__ = ["ActiveSystem", "ChompOptions", "ChompSolver", "ConstrainedStep", "IntArray", "MetricImages", "SparseRows",
-           "WorkingSet", "robust_cholesky", "solve_chomp", "stacked_rows", "unit_rows"]
+           "WorkingSet", "robust_cholesky", "solve_chomp", "stacked_rows", "unit_columns"]
 
 IntArray = npt.NDArray[np.int64]
 REGULARISATIONS = (0.0, 1e-12, 1e-9, 1e-6)
@@ -179,7 +179,7 @@ class MetricImages:
                             lambda rows: stacked_rows([SparseRows.of(self.model.inequality_jacobian, rows)],
                                                       n_variables).T.toarray())
         self._solve_missing(self.unit, np.union1d(working.upper, working.lower),
-                            lambda rows: np.eye(n_variables)[:, rows])
+                            lambda rows: unit_columns(rows, n_variables))
         columns = [self.equality,
                    *(self.inequality[int(row)][:, None] for row in working.inequality_rows),
                    *(self.unit[int(index)][:, None] for index in working.upper),
@@ -251,6 +251,13 @@ class SparseRows:
                    np.ones(indices.size, dtype=np.int64))
 
 
+def unit_columns(indices: IntArray, n_variables: int) -> FloatArray:
+    """The columns ``e_i`` (n_variables x len(indices)) of the identity, without building it."""
+    columns = np.zeros((n_variables, indices.size))
+    columns[indices, np.arange(indices.size)] = 1.0
+    return columns
+
+
 def stacked_rows(parts: list[SparseRows], n_columns: int) -> sp.csr_matrix:
     """One CSR matrix of ``parts``' rows, top to bottom."""
     lengths = np.concatenate([part.lengths for part in parts])
@@ -258,10 +265,6 @@ def stacked_rows(parts: list[SparseRows], n_columns: int) -> sp.csr_matrix:
     return sp.csr_matrix((np.concatenate([part.data for part in parts]),
                           np.concatenate([part.indices for part in parts]), indptr), shape=(lengths.size, n_columns))
 
-
-def unit_rows(indices: IntArray, sign: float, n_variables: int) -> sp.csr_matrix:
-    """Rows ``sign * e_i^T`` for joint-limit variables."""
-    return stacked_rows([SparseRows.units(indices, sign)], n_variables)
 
 
 class ChompSolver(BackendSolver[ChompOptions]):
