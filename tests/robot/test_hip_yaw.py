@@ -1,8 +1,11 @@
 """Every profile's turn per step is one its hips can walk (door_robot.hip_yaw)."""
 
+import dataclasses
+
 import pytest
 
 from door_contract.vocabulary import Side
+from door_robot.errors import RobotModelError
 from door_robot.hip_yaw import TOE_IN_TRUNK_LAG, hip_yaw_joint, inward_hip_yaw_range, max_turn_of_hips
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
@@ -41,3 +44,11 @@ def test_g1_hip_yaw_is_found_although_its_axis_is_tilted():
     kinematics = _kinematics("g1")
     assert hip_yaw_joint(kinematics, Side.LEFT) == "left_hip_yaw_joint"
     assert inward_hip_yaw_range(kinematics, Side.RIGHT) == pytest.approx(2.758, abs=1e-3)
+
+
+def test_a_leg_without_a_vertical_joint_is_a_clear_error():
+    """A sole frame on the pelvis itself: its chain has no joint at all, so no hip yaw."""
+    profile = load_profile("talos")
+    pelvis_feet = dataclasses.replace(profile, feet={side: profile.base_frame for side in Side})
+    with pytest.raises(RobotModelError, match="left leg has no joint with a vertical axis"):
+        max_turn_of_hips(RobotKinematics(pelvis_feet))
