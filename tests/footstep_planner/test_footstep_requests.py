@@ -58,6 +58,15 @@ def test_goal_settings_are_read_from_the_node_parameters() -> None:
     assert passage_angle(0.2, settings) == settings.passage_door_angle and passage_angle(1.9, settings) == 1.9
 
 
+def test_a_robots_profile_stance_sets_its_stand_distances_over_the_parameters() -> None:
+    """G1's hands reach less than TALOS's: its profile's ``stance`` replaces the parameters'
+    stand distances (TALOS's), the other settings stay the parameters'."""
+    parameters = {"stand_reach_pull": 0.65, "push_side_reach": 0.5, "beyond_door": 2.0}
+    g1 = GoalSettings.for_robot("g1", parameters)
+    assert (g1.push_side_reach, g1.stand_reach_pull, g1.beyond_door) == (0.42, 0.45, 2.0)
+    assert GoalSettings.for_robot("talos", parameters) == GoalSettings.from_parameters(parameters)
+
+
 def _start(options, distance: float = 2.5, lateral: float = 0.3, yaw: float = 0.3) -> Stance:
     return Stance.nominal(Pose2D(2.0 - distance, lateral, yaw), options.nominal_foot_separation)
 

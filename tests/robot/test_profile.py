@@ -74,3 +74,28 @@ def test_grasp_axes_are_required_and_checked(tmp_path):
     path.write_text(yaml.safe_dump(document))
     with pytest.raises(RobotModelError, match="incomplete: 'grasp_axes'"):
         load_profile(str(path))
+
+
+def test_a_hand_beside_the_door_holds_the_lever_as_its_profile_says():
+    """G1 turns the lever fingers-down beside a push door (``grasp_axes_beside``) and
+    fingers-up facing one; a profile without it (TALOS) holds it one way."""
+    for arm in load_profile("g1").arms.values():
+        assert arm.grasp_axes_for(beside=False) == arm.grasp_axes
+        beside = arm.grasp_axes_for(beside=True)
+        assert beside.into_door == arm.grasp_axes.into_door and beside.up == tuple(-v for v in arm.grasp_axes.up)
+    for arm in load_profile("talos").arms.values():
+        assert arm.grasp_axes_beside is None and arm.grasp_axes_for(beside=True) == arm.grasp_axes
+
+
+def test_stance_sets_the_robots_stand_distances_and_is_checked(tmp_path):
+    assert load_profile("g1").stance == {"push_side_reach": 0.42, "stand_reach_pull": 0.45}
+    assert load_profile("talos").stance == {}
+    document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
+    path = tmp_path / "robot_bad_stance.yaml"
+    for stance, message in (({"stand_reach_push": 0.4}, r"unknown field\(s\) \['stand_reach_push'\]"),
+                            ({"stand_reach": -0.4}, "positive and finite"),
+                            ({"stand_reach": float("nan")}, "positive and finite")):
+        document["stance"] = stance
+        path.write_text(yaml.safe_dump(document))
+        with pytest.raises(RobotModelError, match=message):
+            load_profile(str(path))

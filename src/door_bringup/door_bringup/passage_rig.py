@@ -190,7 +190,7 @@ def stand_world(door: DoorConfig, offset: tuple[float, float, float] = (0.0, 0.0
     (``physics_rate``, ``contact_solver``, ``solver_iterations``) over their defaults."""
     with DoorWorld(WorldConfig(robot_profile=robot, door=door)) as probe:
         estimate = erroneous_estimate(perfect_estimate(probe), *error)
-    settings = GoalSettings.from_parameters(parameters)
+    settings = GoalSettings.for_robot(robot, parameters)
     options = planner_options(robot, parameters)
     geometry = door_geometry_from_estimate(estimate, door.opening, 0.0, settings.handle_standoff)
     stand = stand_pose(geometry, options, settings)
@@ -307,7 +307,7 @@ def walk_through(world: DoorWorld, estimate: DoorEstimate, kinematics: RobotKine
     the motion library for ``hand`` (the opening's; the FSM names it in its requests):
     (stage, status, reason, peak contact forces), the stage :data:`WALKED_THROUGH` or the step
     that did not succeed."""
-    settings = GoalSettings.from_parameters(parameters)
+    settings = GoalSettings.for_robot(world.config.robot_profile, parameters)
     options = planner_options(world.config.robot_profile, parameters)
     planners, library, peaks = WalkPlanners(), MotionLibrary(), dict[str, float]()
     for step in passage_steps(world.config.door.opening):
@@ -376,7 +376,7 @@ def run_door(opening: DoorOpening, hinge: HingeSide, trial: int, kinematics: Rob
         stage, status, reason = WALK_TO_DOOR, "success", ""
         if walk_from is not None:
             status, reason = _walk(world, estimate, WalkGoal.STAND, WalkPlanners(), planner_options(robot, parameters),
-                                   GoalSettings.from_parameters(parameters), peaks, trace)
+                                   GoalSettings.for_robot(robot, parameters), peaks, trace)
         if status == "success":
             hand = opening_hand(world, estimate)  # at the stand pose, as the approach picks it
             stage, status, reason = open_door(world, kinematics, estimate, peaks, hand, trace)

@@ -16,6 +16,12 @@ leaves the choice to the simulator (the frame axes closest to the base's forward
 the door. A head camera on a neck is tilted by the neck (the simulator's ``head_pitch``); one
 fixed to the torso is not, and G1's, 48° down, sees the handle only from within ~1 m: it leans
 its torso back instead (the waist pitch).
+
+What differs with the robot's size is the profile's too: ``stance`` sets the footstep
+planner's stand distances for robots whose hands reach less or further than TALOS's (G1:
+0.42 m beside a push door, where TALOS stands 0.50 m away), and an arm's ``grasp_axes_beside``
+turns the hand the other way up on the lever when the door runs along the robot's side (G1's
+wrist turns the lever fingers-down there, fingers-up facing the door).
 """
 
 from __future__ import annotations
@@ -32,7 +38,7 @@ from door_contract.vocabulary import Side
 from door_robot.errors import RobotModelError
 from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
 
-__all__ = ["ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "RobotProfile", "WalkingLimits", "load_profile",
+__all__ = ["STANCE_FIELDS", "ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "RobotProfile", "WalkingLimits", "load_profile",
            "profile_path", "resolve_urdf"]
 
 
@@ -144,13 +150,21 @@ class GraspAxes:
 @dataclass(frozen=True)
 class ArmSpec:
     """The joints that move one hand (torso first), its TCP parent frame and grasp offset, and
-    how the hand is turned to hold a lever (:class:`GraspAxes`)."""
+    how the hand is turned to hold a lever (:class:`GraspAxes`): ``grasp_axes`` facing the
+    door, ``grasp_axes_beside`` when the door runs along the robot's side (the sideways push
+    stance, :mod:`footstep_planner.push_passage`), where a wrist may need the other way up to
+    turn the lever (G1's); None: ``grasp_axes`` there too."""
 
     joints: tuple[str, ...]
     tcp_parent_frame: str
     grasp_offset: Axis  # m, TCP in the parent frame
     grasp_axes: GraspAxes
     gripper_joint: str | None = None
+    grasp_axes_beside: GraspAxes | None = None
+
+    def grasp_axes_for(self, beside: bool) -> GraspAxes:
+        """The hand's axes on the lever, the door across the robot's front or (``beside``) along its side."""
+        return self.grasp_axes_beside if beside and self.grasp_axes_beside is not None else self.grasp_axes
 
 
 @dataclass(frozen=True)
@@ -184,6 +198,7 @@ class RobotProfile:
     extra_frames: dict[str, ExtraFrame] = field(default_factory=dict)  # frame name -> ExtraFrame (added to every model)
     head_camera_axes: CameraAxes | None = None  # the optical axes in head_camera_frame; None: the sim's guess
     look_posture: dict[str, float] = field(default_factory=dict)  # joint -> rad over the walking posture, to see the door
+    stance: dict[str, float] = field(default_factory=dict)  # footstep planner stand distance -> m (STANCE_FIELDS)
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
@@ -236,9 +251,16 @@ def _xyz(values: Any) -> tuple[float, float, float]:
     return x, y, z
 
 
+STANCE_FIELDS = frozenset({"stand_reach", "stand_reach_pull", "push_side_reach"})
+"""The footstep planner's stand distances a profile's ``stance`` may set for its robot (m, base
+to the door plane; the node's parameters of the same names are TALOS's): how far the hands
+reach is the robot's, like its stride."""
+
+
 def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
     arms = {Side(side): ArmSpec(tuple(arm["joints"]), arm["tcp_parent_frame"], _xyz(arm["grasp_offset"]),
-                                GraspAxes.from_document(arm["grasp_axes"]), arm.get("gripper_joint"))
+                                GraspAxes.from_document(arm["grasp_axes"]), arm.get("gripper_joint"),
+                                _grasp_axes_beside(arm.get("grasp_axes_beside")))
             for side, arm in document["arms"].items()}
     posture = {name: float(value) for name, value in document["nominal_posture"].items()}
     if not all(math.isfinite(v) for v in posture.values()):
@@ -258,7 +280,23 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
                       for name, frame in (document.get("extra_frames") or {}).items()},
         head_camera_axes=_camera_axes(document.get("head_camera_axes")),
         look_posture=_posture(document, "look_posture"),
+        stance=_stance(document.get("stance")),
     )
+
+
+def _grasp_axes_beside(document: Any) -> GraspAxes | None:
+    return None if document is None else GraspAxes(*_axis_pair("grasp_axes_beside", ("into_door", "up"), document))
+
+
+def _stance(document: Any) -> dict[str, float]:
+    """The optional ``stance`` mapping: :data:`STANCE_FIELDS` names to positive finite metres."""
+    stance = {str(name): float(value) for name, value in (document or {}).items()}
+    unknown = sorted(set(stance) - STANCE_FIELDS)
+    if unknown:
+        raise RobotModelError(f"stance: unknown field(s) {unknown}; known: {sorted(STANCE_FIELDS)}")
+    if not all(math.isfinite(v) and v > 0.0 for v in stance.values()):
+        raise RobotModelError(f"stance distances must be positive and finite, got {stance}")
+    return stance
 
 
 def _posture(document: dict[str, Any], key: str) -> dict[str, float]:

@@ -314,7 +314,8 @@ def _problem(setup: MotionSetup, start_chain: np.ndarray, options: MotionOptions
 
 def _tcp_in_grasp(setup: MotionSetup, start_chain: np.ndarray) -> np.ndarray:
     """TCP relative to the grasp frame: fingers into the door, closing vertically, as the
-    profile's ``grasp_axes`` of the hand say (:class:`door_robot.profile.GraspAxes`; TALOS's
+    profile's ``grasp_axes`` of the hand say, or its ``grasp_axes_beside`` when the door runs
+    along the robot's side (:class:`door_robot.profile.GraspAxes`; TALOS's
     grippers point their fingers along −z of the TCP and close along y: z_tcp = x_grasp, the
     normal, y_tcp = z_grasp, up, x_tcp = y_grasp). While the hand holds the handle, the
     transform measured at the start (:func:`anchored_to_hand`) replaces this nominal one: the
@@ -323,8 +324,9 @@ def _tcp_in_grasp(setup: MotionSetup, start_chain: np.ndarray) -> np.ndarray:
     """
     if setup.hand_in_grasp is not None:
         return setup.hand_in_grasp
+    beside = abs(setup.door.along[1]) < DOOR_ACROSS_FRONT
     tcp = np.eye(4)
-    tcp[:3, :3] = setup.chain.kinematics.profile.arm(setup.chain.side).grasp_axes.rotation_in_grasp()
+    tcp[:3, :3] = setup.chain.kinematics.profile.arm(setup.chain.side).grasp_axes_for(beside).rotation_in_grasp()
     return tcp
 
 

@@ -36,6 +36,7 @@ from door_contract.planner_service import Finished
 from door_contract.stamps import time_msg_of_ns
 from door_contract.topics import Topics
 from door_robot.errors import RobotModelError
+from door_robot.profile import STANCE_FIELDS
 from footstep_planner.errors import FootstepPlannerError
 from footstep_planner.parameters import NODE_NAME, PLANNER_PARAMETERS
 from footstep_planner.requests import GoalSettings, Snapshot, planner_options
@@ -50,7 +51,12 @@ class FootstepPlannerNode(Node):
         p = declare_parameters(self, PLANNER_PARAMETERS)
         with as_parameter_error("footstep planner options", FootstepPlannerError, RobotModelError):
             options = planner_options(p["robot_profile"], p)
-        self.service = WalkService(options, GoalSettings.from_parameters(p))
+            settings = GoalSettings.for_robot(p["robot_profile"], p)
+        for name in sorted(STANCE_FIELDS):
+            if getattr(settings, name) != p[name]:
+                self.get_logger().info(f"{name} {getattr(settings, name):.2f} m from the {p['robot_profile']} profile's "
+                                       f"stance (parameter: {p[name]:.2f} m, TALOS's)")
+        self.service = WalkService(options, settings)
         self.heartbeat = Heartbeat(self)
         self.inputs = PlannerInputs(self, self.heartbeat)
         self.plan_pub = create_contract_publisher(self, Topics.FOOTSTEP_PROPOSAL)

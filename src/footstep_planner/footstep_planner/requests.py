@@ -20,6 +20,7 @@ from door_contract.door_estimates import requested_estimate_problem
 from door_contract.geometry import yaw_of
 from door_contract.payloads import DoorEstimate, FootstepRequest
 from door_contract.vocabulary import DoorOpening, Foot, WalkGoal
+from door_robot.profile import load_profile
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.door import DoorGeometry, wall_obstacles
 from footstep_planner.errors import RequestRefused
@@ -128,6 +129,13 @@ class GoalSettings:
         defaults = cls()  # each value converted to its default's type (float, PullPassage)
         return cls(**{name: type(getattr(defaults, name))(value) for name, value in parameters.items()
                       if name in cls.__dataclass_fields__})
+
+    @classmethod
+    def for_robot(cls, profile_name: str, parameters: Mapping[str, Any]) -> GoalSettings:
+        """:meth:`from_parameters` with the robot profile's ``stance`` distances over the
+        parameters of the same names (:data:`door_robot.profile.STANCE_FIELDS`: the parameters'
+        values are TALOS's reach; a smaller robot stands closer)."""
+        return cls.from_parameters({**parameters, **load_profile(profile_name).stance})
 
 
 @dataclass(frozen=True)
