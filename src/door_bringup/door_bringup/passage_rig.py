@@ -56,7 +56,7 @@ from door_sim_bridge.world import ContactSolver, DoorConfig, DoorWorld, StanceCo
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import MotionLibrary
-from door_trajopt.motions import MotionSetup, start_door_for, support_polygon
+from door_trajopt.motions import MotionSetup, start_door_for
 from door_trajopt.requests import grasping_hand
 from footstep_planner.narrow import PullPassage
 from footstep_planner.options import FootstepPlannerOptions
@@ -206,7 +206,7 @@ def motion_setup(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEs
                                        if name in kinematics.joint_names})
     chain = ArmChain(kinematics, hand, body_q)
     door = door_model_from_estimate(estimate, np.linalg.inv(world.base_pose()), push=push)
-    return MotionSetup(chain, door, estimate.width, support_polygon(chain), door_angles)
+    return MotionSetup.measured(chain, door, estimate.width, world.base_pose()[:3, :3], door_angles)
 
 
 def opening_sequence(opening: DoorOpening) -> tuple[Motion | HandCommand, ...]:

@@ -27,7 +27,7 @@ from door_robot.kinematics import RobotKinematics
 from door_trajopt.chain import ArmChain
 from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import MotionPlan
-from door_trajopt.motions import MotionOptions, MotionSetup, start_door_for, support_polygon
+from door_trajopt.motions import MotionOptions, MotionSetup, start_door_for
 from door_trajopt.problem import TrajoptError
 
 __all__ = ["MotionJob", "PlanningRefused", "Snapshot", "grasping_hand", "motion_figures", "motion_job",
@@ -83,8 +83,8 @@ def motion_job(request: MotionRequest, snapshot: Snapshot, kinematics: RobotKine
     chain = ArmChain(kinematics, side, body_q)
     door = door_model_from_estimate(estimate, np.linalg.inv(snapshot.base_pose),
                                     push=request.opening is DoorOpening.PUSH, lever_radius=lever_radius)
-    setup = MotionSetup(chain, door, estimate.width, support_polygon(chain),
-                        start_door_for(motion, request.door_angle, options))
+    setup = MotionSetup.measured(chain, door, estimate.width, snapshot.base_pose[:3, :3],
+                                 start_door_for(motion, request.door_angle, options))
     return MotionJob(motion, backend, side, setup, chain.chain_of(body_q))
 
 
