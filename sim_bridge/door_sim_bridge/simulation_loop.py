@@ -19,16 +19,21 @@ one comes between), the rest of that tick is skipped and the simulation goes on 
 next tick. A fault of the execution or of the physics ends the running execution with
 FAILURE ``"internal error …"`` and the robot held where it is; a publication's fault
 moves nothing.
+
+Falls: every step's robot–door contacts are kept for 3 s of simulated time, and a FELL
+outcome's reason names the hardest of them (:mod:`~door_sim_bridge.contact_history`), so that
+a fall seen only in the graph can be told from its log and report.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from enum import Enum
 
 from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus
 from door_contract.vocabulary import Side
+from door_sim_bridge.contact_history import ContactHistory
 from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.execution import Execution
 from door_sim_bridge.schedule import FrameSchedule, Schedule
@@ -155,6 +160,7 @@ class SimulationLoop:
                            if rates.of(stream) > 0 and stream is not Stream.CAMERA}
         self._camera = rates.camera_frames() if rates.camera > 0 else None
         self.running: Running | None = None
+        self.contacts = ContactHistory()  # what a fall's outcome names as having struck
         self.fault_count = 0
         self.last_fault: TickFault | None = None
 
@@ -231,6 +237,7 @@ class SimulationLoop:
                     outcomes.append(ended)
                 stage = TickStage.PHYSICS
                 self.world.step()
+                self.contacts.record(self.world.time, self.world.door_contact_forces())
                 stage = TickStage.PUBLICATION
                 publish(self.world.time, self.due(self.world.time))
             except Exception as error:  # a bug in one tick: reported, and the simulation goes on
@@ -263,12 +270,15 @@ class SimulationLoop:
         running, self.running = self.running, None
         return self._outcome(running)
 
-    @staticmethod
-    def _outcome(running: Running) -> ExecutionOutcome:
+    def _outcome(self, running: Running) -> ExecutionOutcome:
+        """The ended execution's outcome; a fall's names what struck the robot before it."""
         result = running.execution.result
         if result is None:  # not reached: a finished execution has its result
             raise AssertionError(f"{running} finished without a result")
-        return result.outcome(running.kind, running.request_id)
+        outcome = result.outcome(running.kind, running.request_id)
+        if outcome.status is OutcomeStatus.FELL:
+            return replace(outcome, reason=f"{outcome.reason}; {self.contacts.summary()}")
+        return outcome
 
     def _fail_running(self, faults: list[TickFault]) -> list[ExecutionOutcome]:
         """End the running execution with FAILURE after ``faults[0]``, holding the robot."""
