@@ -112,15 +112,22 @@ class RobotKinematics:
         return bool(np.all(q >= self.lower_limits - tolerance) and np.all(q <= self.upper_limits + tolerance))
 
     # ---------------------------------------------------------------- single configuration
-    def _at(self, q: np.ndarray) -> _EvaluatedConfiguration:
-        """The cache for ``q``: forward kinematics done, the passes of another q forgotten."""
+    def _adopt(self, q: np.ndarray) -> bool:
+        """Make the cache ``q``'s; True when ``q`` is new: the passes of the last q are forgotten
+        and none is done yet (the caller does the one it needs)."""
         evaluated = self._evaluated
         key = np.asarray(q, dtype=float).tobytes()
-        if key != evaluated.key:
+        if key == evaluated.key:
+            return False
+        evaluated.key = key
+        evaluated.joint_jacobians, evaluated.com, evaluated.com_jacobian = False, None, None
+        return True
+
+    def _at(self, q: np.ndarray) -> _EvaluatedConfiguration:
+        """The cache for ``q``: forward kinematics done, the passes of another q forgotten."""
+        if self._adopt(q):
             pin.forwardKinematics(self.model, self.data, q)
-            evaluated.key = key
-            evaluated.joint_jacobians, evaluated.com, evaluated.com_jacobian = False, None, None
-        return evaluated
+        return self._evaluated
 
     def frame_pose(self, q: np.ndarray, frame: str) -> np.ndarray:
         """4×4 pose of ``frame`` in the base frame."""
@@ -132,11 +139,8 @@ class RobotKinematics:
     def _with_joint_jacobians(self, q: np.ndarray) -> None:
         """The joint Jacobians of ``q`` computed. Their pass places the joints as it goes, so a
         new ``q`` needs no forward pass before it (``data.oMi`` then serves :meth:`frame_pose`)."""
+        self._adopt(q)
         evaluated = self._evaluated
-        key = np.asarray(q, dtype=float).tobytes()
-        if key != evaluated.key:
-            evaluated.key, evaluated.com, evaluated.com_jacobian = key, None, None
-            evaluated.joint_jacobians = False
         if not evaluated.joint_jacobians:
             pin.computeJointJacobians(self.model, self.data, q)
             evaluated.joint_jacobians = True
