@@ -70,9 +70,8 @@ def test_approach_ends_on_the_handle_within_limits_and_balance(approach):
     assert np.all(trajectory[:, :chain.size] >= chain.lower - 1e-6)
     assert np.all(trajectory[:, :chain.size] <= chain.upper + 1e-6)
     x_min, x_max, y_min, y_max = setup.support_polygon
-    level = setup.level if setup.level is not None else np.eye(3)
     for q in trajectory:
-        com = level @ chain.com_and_jacobian(q[:chain.size])[0]  # levelled, as the polygon
+        com = setup.level @ chain.com_and_jacobian(q[:chain.size])[0]  # levelled, as the polygon
         assert x_min <= com[0] <= x_max and y_min <= com[1] <= y_max
         elbow = chain.point_and_jacobian(q[:chain.size], chain.elbow_frame)[0]
         assert (elbow - setup.door.grasp_point) @ setup.door.normal > 0.0  # in front of the door

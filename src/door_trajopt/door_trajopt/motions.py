@@ -19,11 +19,12 @@ posture deviation from the nominal posture (Q2).
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Protocol
 
 import numpy as np
 
+from door_contract.geometry import planar_pose, yaw_of
 from door_contract.ranges import FieldRange, check_in_range
 from door_contract.vocabulary import Motion, Side
 from door_trajopt.chain import ArmChain
@@ -137,7 +138,7 @@ class MotionSetup:
     support_polygon: np.ndarray  # (4,) x_min, x_max, y_min, y_max of the feet, levelled base frame
     start_door: tuple[float, float] = (0.0, 0.0)  # θ, φ
     hand_in_grasp: np.ndarray | None = None  # measured TCP in the door's grasp frame while holding
-    level: np.ndarray | None = None  # 3×3, base frame → levelled base frame; None: the base is upright
+    level: np.ndarray = field(default_factory=lambda: np.eye(3))  # 3×3, base frame → levelled base frame
 
     @classmethod
     def measured(cls, chain: ArmChain, door: DoorModel, door_width: float, base_orientation: np.ndarray,
@@ -152,10 +153,7 @@ def levelling(base_orientation: np.ndarray) -> np.ndarray:
     """R_level = R_z(ψ)ᵀ·R, ψ the base's yaw (the heading of its x axis): base-frame vectors in
     the frame that has the base's heading and z vertical, where "over the feet" is horizontal."""
     rotation = np.asarray(base_orientation, dtype=float)[:3, :3]
-    yaw = float(np.arctan2(rotation[1, 0], rotation[0, 0]))
-    c, s = np.cos(yaw), np.sin(yaw)
-    unturn = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
-    level: np.ndarray = unturn @ rotation
+    level: np.ndarray = planar_pose(0.0, 0.0, yaw_of(rotation))[:3, :3].T @ rotation
     return level
 
 
@@ -234,7 +232,7 @@ def _com_in_polygon(setup: MotionSetup, margin: float) -> WaypointFunction:
     levelled base frame (R_level·c_base; its Jacobian R_level·J)."""
     x_min, x_max, y_min, y_max = setup.support_polygon
     k = setup.chain.size
-    level = (setup.level if setup.level is not None else np.eye(3))[:2]
+    level = setup.level[:2]
     signs = np.array([[-1.0, 0.0], [1.0, 0.0], [0.0, -1.0], [0.0, 1.0]])
     bounds = np.array([-x_min, x_max, -y_min, y_max])
 
