@@ -99,3 +99,15 @@ def test_stance_sets_the_robots_stand_distances_and_is_checked(tmp_path):
         path.write_text(yaml.safe_dump(document))
         with pytest.raises(RobotModelError, match=message):
             load_profile(str(path))
+
+
+@pytest.mark.parametrize("axes, message", [({"into_door": "y", "up": "w"}, r"grasp_axes_beside\.up = 'w'"),
+                                           ({"into_door": "y"}, "grasp_axes_beside needs exactly"),
+                                           ({"into_door": "y", "up": "-y"}, "different frame axes")])
+def test_a_bad_beside_grasp_is_refused(tmp_path, axes, message):
+    document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
+    document["arms"]["right"]["grasp_axes_beside"] = axes
+    path = tmp_path / "robot_bad_beside.yaml"
+    path.write_text(yaml.safe_dump(document))
+    with pytest.raises(RobotModelError, match=message):
+        load_profile(str(path))

@@ -142,9 +142,9 @@ class GraspAxes:
         return rotation
 
     @classmethod
-    def from_document(cls, document: Any) -> GraspAxes:
-        """From ``{into_door: -z, up: y}``."""
-        return cls(*_axis_pair("grasp_axes", ("into_door", "up"), document))
+    def from_document(cls, document: Any, key: str = "grasp_axes") -> GraspAxes:
+        """From ``{into_door: -z, up: y}``, the profile's entry ``key`` (named in its errors)."""
+        return cls(*_axis_pair(key, ("into_door", "up"), document))
 
 
 @dataclass(frozen=True)
@@ -285,7 +285,7 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
 
 
 def _grasp_axes_beside(document: Any) -> GraspAxes | None:
-    return None if document is None else GraspAxes(*_axis_pair("grasp_axes_beside", ("into_door", "up"), document))
+    return None if document is None else GraspAxes.from_document(document, "grasp_axes_beside")
 
 
 def _stance(document: Any) -> dict[str, float]:
