@@ -57,6 +57,7 @@ def test_walks_with_an_arm_held_out(world):
     positions = world.joint_positions()
     assert all(positions[name] == pytest.approx(value, abs=0.05) for name, value in held.items())
     assert sole_error(world, plan)[0] < 0.03
+    assert world.balance is not None and world.balance.controller.pattern_departure is None  # on its pattern
 
 
 def test_a_stop_ends_the_walk_at_the_next_stable_stance(world):
@@ -96,6 +97,7 @@ def test_a_200_N_shove_at_the_torso_is_a_fall_reported_as_fell(world):
     world.push_robot("torso_2_link", [0.0, 200.0, 0.0], steps=int(0.5 * world.config.physics_rate))
     result = execution.run(max_steps=int(5.0 * world.config.physics_rate))
     assert result.status is OutcomeStatus.FELL and "base tilted" in result.reason
+    assert "capture point left its pattern" in result.reason  # knocked off it before the tilt
     assert world.fallen and [e.kind for e in world.events()].count(EventKind.FELL) == 1
     world.step(int(2.0 * world.config.physics_rate))
     assert world.fallen  # a fallen robot stays fallen

@@ -36,7 +36,7 @@ from door_contract.converters.footsteps import FootPlacement
 from door_contract.vocabulary import Foot
 from door_robot.profile import RobotProfile
 from door_sim_bridge.errors import SimulationError
-from door_sim_bridge.walking.dcm import CentreOfMassMotion, DcmFeedback
+from door_sim_bridge.walking.dcm import CentreOfMassMotion, DcmFeedback, PatternDeparture
 from door_sim_bridge.walking.gait import GaitOptions, footstep_sequence, placo_parameters
 from door_sim_bridge.walking.model import PLACO_TRUNK_FRAME, joint_split, load_placo_robot
 from door_sim_bridge.walking.stabilizer import ContactWrench, Stabilizer, StabilizerOptions
@@ -250,6 +250,11 @@ class WalkingController:
         return self.mode is BalanceMode.STANDING and self._settle_time < self.gait.settle_s
 
     @property
+    def pattern_departure(self) -> PatternDeparture | None:
+        """When the last walk was knocked off its pattern (None: it never was, or no walk yet)."""
+        return self._dcm.departure
+
+    @property
     def remaining_s(self) -> float:
         """Seconds of walking left (0 standing)."""
         if self._trajectory is None:
@@ -319,7 +324,7 @@ class WalkingController:
         offset = self.stabilizer.update(self.dt, zmp, measurement.wrench, measurement.cop, walking=True)
         if measurement.centre_of_mass is not None:
             planned = CentreOfMassMotion(np.array(trajectory.get_p_world_CoM(t)), np.array(trajectory.get_v_world_CoM(t)))
-            offset = offset + self._dcm.shift(measurement.centre_of_mass, planned, omega)
+            offset = offset + self._dcm.shift(measurement.centre_of_mass, planned, omega, self._walk_time)
         com_task = self._tasks.com_task
         com_task.target_world = np.array(com_task.target_world) + np.array([offset[0], offset[1], 0.0])
         self._track_support(trajectory, t, measurement)

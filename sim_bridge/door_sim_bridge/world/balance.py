@@ -87,14 +87,16 @@ class BalanceLoop:
             self._robot.set_joint_targets(self.controller.tick(self.measure()))
 
     def check_fall(self) -> str | None:
-        """After a step: the reason when the robot has just fallen (once), else None."""
+        """After a step: the reason when the robot has just fallen (once), else None; it says
+        when the last walk was knocked off its pattern, if it was (a blow, rather than a drift)."""
         if self.fall is not None:
             return None
         reason = fall_reason(self._robot.base_pose(), self._robot.profile.base_height, self._config.fall)
         if reason is not None:
-            self.fall = reason
+            departure = self.controller.pattern_departure
+            self.fall = reason if departure is None else f"{reason}; {departure}"
             self._robot.go_limp()
-        return reason
+        return self.fall
 
     # ------------------------------------------------------------------ commands
     def set_upper_body(self, targets: Mapping[str, float]) -> None:
