@@ -131,6 +131,20 @@ def test_a_run_is_not_resumed_with_other_settings(tmp_path):
         _run_folder(Workspace(tmp_path), tmp_path / "elsewhere", {"trials": 50, "seed": 0})
 
 
+def test_a_campaign_resumed_with_more_trials_is_extended_by_the_seeds_next_doors(tmp_path):
+    settings = {"trials": 3, "seed": 7, "autonomy": "full", "openings": ["pull", "push"]}
+    (tmp_path / SETTINGS_FILE).write_text(json.dumps(settings))
+    assert _run_folder(Workspace(tmp_path), tmp_path, {**settings, "trials": 5}) == tmp_path
+    assert json.loads((tmp_path / SETTINGS_FILE).read_text())["trials"] == 5  # resumed again with 5 from now on
+    longer = draw_trials(np.random.default_rng(7), TaskOptions(), 5, ["push", "pull"])
+    assert draw_trials(np.random.default_rng(7), TaskOptions(), 3, ["push", "pull"]) == longer[:3]
+    with pytest.raises(ResumeError, match="campaign of 5 trials: resume it with --trials 5 or more, not 4"):
+        _run_folder(Workspace(tmp_path), tmp_path, {**settings, "trials": 4})
+    with pytest.raises(ResumeError, match="seed"):
+        _run_folder(Workspace(tmp_path), tmp_path, {**settings, "trials": 6, "seed": 8})
+    assert json.loads((tmp_path / SETTINGS_FILE).read_text())["trials"] == 5  # a refused resume writes nothing
+
+
 def test_the_same_seed_draws_the_same_doors_in_the_same_order():
     first = draw_trials(np.random.default_rng(7), TaskOptions(), 5, ["pull"])
     assert first == draw_trials(np.random.default_rng(7), TaskOptions(), 5, ["pull"])

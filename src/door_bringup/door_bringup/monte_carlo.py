@@ -2,6 +2,7 @@
 
     python -m door_bringup.monte_carlo --trials 50 [--robot g1] [--seed 0] [--autonomy full] [--jobs 2] [--ranges full|narrow]
     python -m door_bringup.monte_carlo --trials 50 --resume runs/monte_carlo_<stamp>
+    python -m door_bringup.monte_carlo --trials 100 --resume runs/monte_carlo_<stamp>   # extend it
 
 Each trial runs the whole graph (separate processes, real DDS) on a door drawn from the
 seed: push or pull, left or right hinge, start distance, lateral offset and yaw, door
@@ -12,7 +13,8 @@ success rates per phase and overall, and writes ``runs/monte_carlo_<stamp>/summa
 finished trial is kept in ``trial_<n>/trial.json``: ``--resume`` reads those and runs the rest
 (the doors come from the seed, so the same settings draw the same doors). The settings,
 the robot among them, are kept in ``monte_carlo.json``: a folder is resumed only with the
-settings it was started with.
+settings it was started with, but for ``--trials``, which may grow: a 50-door campaign resumed
+with ``--trials 100`` runs the seed's next 50 doors (a seed draws its doors in order).
 """
 
 from __future__ import annotations
@@ -125,7 +127,9 @@ def draw_trials(rng: np.random.Generator, base: TaskOptions, count: int, opening
 
 
 def _run_folder(workspace: Workspace, resume: Path | None, settings: dict) -> Path:
-    """A new ``runs/monte_carlo_<stamp>``, or the folder to resume (same settings, else ResumeError)."""
+    """A new ``runs/monte_carlo_<stamp>``, or the folder to resume: the same settings but
+    ``trials``, which may grow (the campaign is extended: a seed draws its doors in order, so
+    its first doors are the ones already run); else ResumeError."""
     if resume is None:
         out = workspace.root / "runs" / f"monte_carlo_{datetime.now(UTC).strftime('%Y%m%dT%H%M%SZ')}"
         out.mkdir(parents=True, exist_ok=True)
@@ -135,10 +139,16 @@ def _run_folder(workspace: Workspace, resume: Path | None, settings: dict) -> Pa
     if not recorded.is_file():
         raise ResumeError(f"{resume} is not a Monte-Carlo run folder (no {SETTINGS_FILE})")
     earlier, settings = {**RECORDED_BEFORE, **json.loads(recorded.read_text())}, {**RECORDED_BEFORE, **settings}
-    if earlier != settings:
-        differing = sorted(key for key in earlier.keys() | settings.keys() if earlier.get(key) != settings.get(key))
+    differing = sorted(key for key in earlier.keys() | settings.keys()
+                       if key != "trials" and earlier.get(key) != settings.get(key))
+    if differing:
         raise ResumeError(f"{resume} was run with other settings ({', '.join(differing)}): "
                          f"{json.dumps({key: earlier.get(key) for key in differing})}")
+    if settings["trials"] < earlier["trials"]:
+        raise ResumeError(f"{resume} is a campaign of {earlier['trials']} trials: resume it with "
+                         f"--trials {earlier['trials']} or more, not {settings['trials']}")
+    if settings["trials"] > earlier["trials"]:  # extended: the seed's first doors are the ones run
+        recorded.write_text(json.dumps({**json.loads(recorded.read_text()), "trials": settings["trials"]}, indent=2))
     return resume
 
 
