@@ -33,9 +33,9 @@ __all__ = ["PATTERN_DEPARTURE", "CentreOfMassMotion", "DcmFeedback", "PatternDep
 
 PATTERN_DEPARTURE = 0.08
 """Capture-point error (m, the walk's first error taken out) past which a walk has left its
-pattern. Walks through doors that passed stayed within 3.7 cm (push) and 2.9 cm (pull), the offset included; a lever
-striking the pelvis (~2 kN) put a walk 16 cm off within 0.2 s, and the robot fell 2 s later
-(passage rig, stop 34)."""
+pattern. Walks through doors that passed stayed within 3.7 cm (push) and 2.9 cm (pull), the
+offset included; a lever striking the pelvis (~2 kN) put a walk 16 cm off within 0.2 s, and the
+robot fell 2 s later (passage rig, stop 34)."""
 
 
 @dataclass(frozen=True, eq=False)
