@@ -138,7 +138,8 @@ def _run_folder(workspace: Workspace, resume: Path | None, settings: dict) -> Pa
     recorded = resume / SETTINGS_FILE
     if not recorded.is_file():
         raise ResumeError(f"{resume} is not a Monte-Carlo run folder (no {SETTINGS_FILE})")
-    earlier, settings = {**RECORDED_BEFORE, **json.loads(recorded.read_text())}, {**RECORDED_BEFORE, **settings}
+    stored = json.loads(recorded.read_text())
+    earlier, settings = {**RECORDED_BEFORE, **stored}, {**RECORDED_BEFORE, **settings}
     differing = sorted(key for key in earlier.keys() | settings.keys()
                        if key != "trials" and earlier.get(key) != settings.get(key))
     if differing:
@@ -148,7 +149,7 @@ def _run_folder(workspace: Workspace, resume: Path | None, settings: dict) -> Pa
         raise ResumeError(f"{resume} is a campaign of {earlier['trials']} trials: resume it with "
                          f"--trials {earlier['trials']} or more, not {settings['trials']}")
     if settings["trials"] > earlier["trials"]:  # extended: the seed's first doors are the ones run
-        recorded.write_text(json.dumps({**json.loads(recorded.read_text()), "trials": settings["trials"]}, indent=2))
+        recorded.write_text(json.dumps({**stored, "trials": settings["trials"]}, indent=2))
     return resume
 
 
