@@ -8,12 +8,16 @@ import os
 import signal
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
 import pytest
 
+from door_bringup.graph_spec import GRAPH
 from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm, signals_deferred
+from door_bringup.processes import NodeProcess, ProcessSupervisor
+from door_bringup.workspace import Workspace
 
 
 def test_a_sigterm_raises_keyboard_interrupt_in_the_main_thread():
@@ -43,6 +47,37 @@ def test_a_sigterm_while_a_child_starts_is_raised_once_the_child_is_kept():
         assert signal.getsignal(signal.SIGTERM) is installed  # the handler before the block is back
     finally:
         signal.signal(signal.SIGTERM, previous)
+
+
+def _stubborn_child() -> subprocess.Popen:
+    """A child in a session of its own that ignores SIGINT (as a node busy in C code may), so
+    that the supervisor's stop goes on to SIGTERM after its grace period."""
+    script = "import signal, time; signal.signal(signal.SIGINT, signal.SIG_IGN); print(flush=True); time.sleep(60)"
+    child = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, start_new_session=True)
+    child.stdout.readline()  # its handler is in place
+    return child
+
+
+def test_a_sigterm_during_the_supervisors_stop_is_raised_once_every_child_is_down(tmp_path):
+    """CI: a Monte-Carlo worker stopping its graph on the first SIGTERM got a second one (the pool
+    terminates the other workers once one exits); raised inside the stop, it left a node running."""
+    previous = signal.getsignal(signal.SIGTERM)
+    supervisor = ProcessSupervisor(Workspace(tmp_path))
+    supervisor.children += [NodeProcess(launch, _stubborn_child()) for launch in GRAPH[:3]]
+    second_stop = threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGTERM))
+    try:
+        interrupt_on_sigterm()
+        second_stop.start()
+        with pytest.raises(KeyboardInterrupt, match="SIGTERM"):
+            supervisor.stop(grace_s=1.0)
+        assert not second_stop.is_alive()  # the signal came during the stop, not after it
+        assert [child.exit_code for child in supervisor.children] == [-signal.SIGTERM] * 3
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+        second_stop.cancel()
+        for child in supervisor.children:
+            child.process.kill()
+            child.process.wait()
 
 
 def _stat(pid: int) -> list[str]:

@@ -37,7 +37,7 @@ from std_msgs.msg import String
 from door_bringup.bags.recorder import message_digest, recorded_key
 from door_bringup.domains import DomainsExhausted, lease_wanted_domain
 from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH, NodeLaunch
-from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm
+from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm, signals_deferred
 from door_bringup.params_files import ROBOT_PARAMETER, robot_nodes
 from door_bringup.processes import ProcessSupervisor
 from door_bringup.progress_monitor import ProgressMonitor
@@ -201,8 +201,9 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
         if options.record and operator.report is not None:  # the FSM ended and published its state
             _wait_until_recorded(operator, String(data=str(report["final_state"])))
     finally:
-        operator.progress.printer.interrupt()
-        codes = {**supervisor.stop(), **recorder.stop()}
+        with signals_deferred():  # a second stop waits: the recorder is stopped too
+            operator.progress.printer.interrupt()
+            codes = {**supervisor.stop(), **recorder.stop()}
         operator.destroy_node()
         rclpy.try_shutdown()
     report["wall_time_s"] = round(time.monotonic() - started, 2)

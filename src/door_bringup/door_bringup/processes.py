@@ -8,7 +8,11 @@ A SIGINT or SIGTERM that arrives while a child is being started is handled once 
 on the list :meth:`ProcessSupervisor.stop` signals (:func:`signals_deferred`): raised inside
 ``subprocess.Popen`` after the fork, its KeyboardInterrupt lost the Popen object, and the
 child, in a session of its own, ran on with nothing to stop it (seen once: a sim bridge still
-running 60 s after a Monte-Carlo's SIGTERM).
+running 60 s after a Monte-Carlo's SIGTERM). :meth:`ProcessSupervisor.stop` holds them back too,
+until every child is down: a second stop raised inside it left the children not yet signalled
+running (seen in CI: a Monte-Carlo worker stopping its graph on the first SIGTERM got a second
+one from the pool, which terminates the other workers once one has exited, and a trajectory
+optimiser ran on).
 """
 
 from __future__ import annotations
@@ -70,7 +74,12 @@ class ProcessSupervisor:
         return [child for child in self.children if child.exit_code is not None]
 
     def stop(self, grace_s: float = 5.0) -> dict[str, int]:
-        """Stop every child (SIGINT → SIGTERM → SIGKILL); returns exit codes by node name."""
+        """Stop every child (SIGINT → SIGTERM → SIGKILL); returns exit codes by node name. A
+        SIGINT or SIGTERM arriving meanwhile is raised once every child is down."""
+        with signals_deferred():
+            return self._stop_children(grace_s)
+
+    def _stop_children(self, grace_s: float) -> dict[str, int]:
         for sig in (signal.SIGINT, signal.SIGTERM, signal.SIGKILL):
             running = [c for c in self.children if c.exit_code is None]
             for child in running:
