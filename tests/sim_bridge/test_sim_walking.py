@@ -145,3 +145,30 @@ def test_a_walk_starts_from_a_com_leaning_beyond_the_soles(world):
     walking = world.profile.walking
     assert ahead > walking.foot_length / 2 - world.config.gait.zmp_margin  # beyond where the ZMP may be
     assert controller.walk(straight_plan(world, 0.1, 2), soles) > 0.0
+
+
+def test_a_crouched_walk_lowers_the_pelvis_and_the_next_upright_walk_raises_it_again(world):
+    """Through a push door whose lever meets the pelvis the robot walks lower
+    (door_robot.profile.PassageCrouch): the pelvis ends the crouch below its standing height
+    and stays there standing; the next walk at crouch 0 brings it back. Both land on the plan."""
+    standing = world.base_pose()[2, 3]
+    plan = straight_plan(world, 0.2, 4)
+    result = FootstepExecution(world, plan, crouch=0.06).run()
+    assert result.status is OutcomeStatus.SUCCESS, result.reason
+    assert world.base_pose()[2, 3] == pytest.approx(standing - 0.06, abs=0.01)
+    assert sole_error(world, plan)[0] < 0.03
+    world.step(int(1.0 * world.config.physics_rate))
+    assert world.base_pose()[2, 3] == pytest.approx(standing - 0.06, abs=0.01)  # it stays down standing
+    plan = straight_plan(world, 0.2, 2)
+    assert FootstepExecution(world, plan).run().status is OutcomeStatus.SUCCESS
+    assert world.base_pose()[2, 3] == pytest.approx(standing, abs=0.01)
+    assert sole_error(world, plan)[0] < 0.03
+
+
+@pytest.mark.parametrize("crouch", [-0.01, 0.5, math.nan])
+def test_a_walk_at_a_crouch_it_cannot_take_is_rejected_and_the_robot_stands(world, crouch):
+    start = world.base_pose()
+    result = FootstepExecution(world, straight_plan(world, 0.2, 2), crouch=crouch).run()
+    assert result.status is OutcomeStatus.REJECTED and "crouch" in result.reason
+    world.step(int(0.5 * world.config.physics_rate))
+    assert np.linalg.norm(world.base_pose()[:3, 3] - start[:3, 3]) < 0.005 and not world.walking

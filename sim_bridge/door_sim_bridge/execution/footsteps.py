@@ -1,6 +1,7 @@
 """Walking a footstep plan: physically with the walking controller, or glided (kinematic).
 
-Validation first (any failure → REJECTED, nothing moves): a non-empty plan whose feet alternate
+Validation first (any failure → REJECTED, nothing moves): a crouch the walker can take
+(:func:`~door_sim_bridge.walking.controller.crouch_problem`), a non-empty plan whose feet alternate
 left, right, … starting with the left foot (the contract's convention: even index = left),
 finite poses, and every step within the profile's walking limits, measured — as the footstep
 planner does — in the frame of the support foot (the other foot's latest placement, or its
@@ -41,6 +42,7 @@ from door_contract.vocabulary import Foot
 from door_robot.profile import WalkingLimits
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution.base import Execution
+from door_sim_bridge.walking.controller import crouch_problem
 from door_sim_bridge.world.world import DoorWorld
 
 __all__ = ["STILL_RADIUS", "STILL_TIME", "STILL_TIMEOUT", "FootstepExecution", "blend_poses", "relative_step",
@@ -129,12 +131,12 @@ def blend_poses(start: np.ndarray, end: np.ndarray, weight: float) -> np.ndarray
 class FootstepExecution(Execution):
     """One footstep plan on the world's robot (see the module docstring)."""
 
-    def __init__(self, world: DoorWorld, steps: Sequence[FootPlacement]) -> None:
+    def __init__(self, world: DoorWorld, steps: Sequence[FootPlacement], crouch: float = 0.0) -> None:
         super().__init__(world)
-        self.steps = tuple(steps)
+        self.steps, self.crouch = tuple(steps), crouch
         self._feet = world.foot_placements()
-        reason = validate_footsteps(self.steps, self._feet, world.profile.walking)
-        if reason is not None:
+        reason = validate_footsteps(self.steps, self._feet, world.profile.walking) or crouch_problem(crouch)
+        if reason:
             self._reject(reason)
         self._step_duration = world.config.execution.step_duration
         self._index = 0
@@ -156,7 +158,7 @@ class FootstepExecution(Execution):
             self._begin_step()
             return
         try:
-            self.world.walk(self.steps)
+            self.world.walk(self.steps, self.crouch)
         except SimulationError as error:
             self._finish(OutcomeStatus.FAILURE, f"the walking controller refused the plan: {error}")
 

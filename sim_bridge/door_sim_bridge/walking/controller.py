@@ -42,12 +42,41 @@ from door_sim_bridge.walking.model import PLACO_TRUNK_FRAME, joint_split, load_p
 from door_sim_bridge.walking.stabilizer import ContactWrench, Stabilizer, StabilizerOptions
 from door_sim_bridge.walking.support import into_polygon, support_polygon
 
-__all__ = ["START_INSET", "BalanceMode", "Measurement", "WalkingController", "level_frame", "mean_yaw", "offset_in_stance",
+__all__ = ["MAX_CROUCH", "crouch_problem", "START_INSET", "BalanceMode", "HeightChange", "Measurement", "WalkingController", "level_frame", "mean_yaw", "offset_in_stance",
            "stance_frame", "supports_from", "yaw_rotation"]
 
 START_INSET = 0.005
 """m a walk's starting CoM is kept inside the pattern's ZMP region (``zmp_margin`` in from the
 soles' edges), so that placo's QP starts strictly feasible."""
+
+
+HEIGHT_PROBE = 0.02  # m the trunk is lowered on the model to measure how the CoM follows it
+HEIGHT_PROBE_TICKS = 200  # IK ticks for it (velocity-limited: 0.8 s of motion at the control rate)
+MAX_CROUCH = 0.15
+"""m a walk may crouch below the standing height (TALOS's knees bend 0.34 rad more for 0.10 m)."""
+
+
+def crouch_problem(crouch: object) -> str:
+    """Why ``crouch`` (m) cannot be walked, or "": a finite number within [0, MAX_CROUCH]."""
+    if not isinstance(crouch, (int, float)) or isinstance(crouch, bool) or not math.isfinite(crouch):
+        return f"crouch {crouch!r} is not a finite number of metres"
+    if not 0.0 <= crouch <= MAX_CROUCH:
+        return f"crouch {crouch:.3f} m is outside [0, {MAX_CROUCH}] m"
+    return ""
+
+
+@dataclass(frozen=True)
+class HeightChange:
+    """The CoM's height through a walk's first double support: ``start`` → ``end`` m over
+    ``duration`` s, a cosine blend (zero vertical speed at both ends), then ``end``."""
+
+    start: float
+    end: float
+    duration: float
+
+    def at(self, t: float) -> float:
+        tau = min(max(t / self.duration, 0.0), 1.0) if self.duration > 0.0 else 1.0
+        return self.start + (self.end - self.start) * (0.5 - 0.5 * math.cos(math.pi * tau))
 
 
 class BalanceMode(str, Enum):
@@ -130,6 +159,9 @@ class WalkingController:
         self._com_target = np.zeros(3)
         self._settle_time = 0.0
         self._trunk_rotation = np.eye(3)
+        self._standing_height = 0.0  # m: the pelvis's height above the soles standing as placed (start())
+        self._height_change = HeightChange(0.0, 0.0, 1.0)
+        self._com_per_pelvis = 1.0  # ∂(CoM height)/∂(pelvis height), the soles fixed (start())
         self.steps_planned = 0
         self.steps_landed = 0
         self._stopping = False
@@ -155,7 +187,9 @@ class WalkingController:
         self._upper.update({k: float(v) for k, v in joint_positions.items() if k in self._upper})
         self.robot.set_T_world_frame(PLACO_TRUNK_FRAME, np.asarray(base_pose, dtype=float))
         self.robot.update_kinematics()
+        self._standing_height = self._pelvis_height()
         self._stand_here(settle=False)  # placed standing: nothing to settle
+        self._com_per_pelvis = self._measure_com_per_pelvis()
 
     def _stance_frame(self) -> np.ndarray:
         return stance_frame(self._feet)
@@ -176,6 +210,29 @@ class WalkingController:
         self._tasks.trunk_mode = settle
         self._hold_trunk()
 
+    def _pelvis_height(self) -> float:
+        """m of the model's trunk frame above its soles' mean height."""
+        soles = 0.5 * (self.robot.get_T_world_left()[2, 3] + self.robot.get_T_world_right()[2, 3])
+        return float(self.robot.get_T_world_frame(PLACO_TRUNK_FRAME)[2, 3] - soles)
+
+    def _measure_com_per_pelvis(self) -> float:
+        """∂(CoM height)/∂(pelvis height) with the soles where they stand: the legs fold under a
+        lowering pelvis, so the CoM moves less than the pelvis (TALOS: 0.8). Measured on the model
+        by lowering the trunk :data:`HEIGHT_PROBE` m with the IK; the model is then restored."""
+        saved, trunk_mode = np.array(self.robot.state.q), self._tasks.trunk_mode
+        self._tasks.trunk_mode = True
+        com, pelvis = float(self.robot.com_world()[2]), self._pelvis_height()
+        target = self._trunk_target - np.array([0.0, 0.0, HEIGHT_PROBE])
+        for _ in range(HEIGHT_PROBE_TICKS):
+            self._tasks.update_tasks(self._feet[Foot.LEFT], self._feet[Foot.RIGHT], target, self._trunk_rotation)
+            self._solver.solve(True)
+            self.robot.update_kinematics()
+        lowered = pelvis - self._pelvis_height()
+        ratio = (com - float(self.robot.com_world()[2])) / lowered if lowered > 0.5 * HEIGHT_PROBE else 1.0
+        self.robot.state.q, self._tasks.trunk_mode = saved, trunk_mode
+        self.robot.update_kinematics()
+        return float(np.clip(ratio, 0.5, 1.0))
+
     def _hold_trunk(self) -> None:
         self._trunk_target = np.array(self.robot.get_T_world_frame(PLACO_TRUNK_FRAME)[:3, 3])
 
@@ -193,11 +250,19 @@ class WalkingController:
     def upper_body_targets(self) -> dict[str, float]:
         return dict(self._upper)
 
-    def walk(self, steps: Sequence[FootPlacement], soles: Mapping[Foot, np.ndarray]) -> float:
-        """Plan the walk over ``steps`` from the measured ``soles``; its duration (s), 0 when
-        there is nothing to walk. SimulationError when already walking or the pattern fails."""
+    def walk(self, steps: Sequence[FootPlacement], soles: Mapping[Foot, np.ndarray], crouch: float = 0.0) -> float:
+        """Plan the walk over ``steps`` from the measured ``soles``, the pelvis ``crouch`` m below
+        its height standing as placed; its duration (s), 0 when there is nothing to walk.
+        SimulationError when already walking or the pattern fails.
+
+        The pattern is the LIPM's at the CoM height h that puts the pelvis there in the present
+        posture (ω = √(g/h)); the CoM goes to h from where it is over the walk's first double
+        support (a cosine blend, both feet down), and the robot stays at that height standing
+        after the walk, until a walk at another height."""
         if self.mode is BalanceMode.WALKING:
             raise SimulationError("already walking")
+        if problem := crouch_problem(crouch):
+            raise SimulationError(problem)
         self._anchor(Foot.LEFT, soles[Foot.LEFT])
         feet_now = {Foot.LEFT: level_frame(self.robot.get_T_world_left()),
                     Foot.RIGHT: level_frame(self.robot.get_T_world_right())}
@@ -206,13 +271,14 @@ class WalkingController:
                                       walking.foot_length, walking.foot_width)
         if not footsteps:
             return 0.0
+        com = np.array(self.robot.com_world())
+        height = float(com[2]) - self._com_per_pelvis * (self._pelvis_height() - (self._standing_height - crouch))
         parameters = placo_parameters(self.gait, walking.foot_length, walking.foot_width,
-                                      walking.foot_separation, float(self.robot.com_world()[2]))
+                                      walking.foot_separation, height)
         # placo's generator keeps a C++ reference to its parameters: they must outlive it
         self._parameters = parameters
         self._generator = placo.WalkPatternGenerator(self.robot, parameters)
         supports = placo.FootstepsPlanner.make_supports(footsteps, 0.0, True, parameters.has_double_support(), True)
-        com = np.array(self.robot.com_world())
         start = self._pattern_start(com, feet_now)
         try:
             trajectory = self._generator.plan(supports, start, 0.0)
@@ -223,6 +289,7 @@ class WalkingController:
         if not trajectory.t_end > 0.0:
             raise SimulationError("the walking pattern generator found no CoM trajectory")
         self._trajectory, self._walk_time, self._stopping = trajectory, 0.0, False
+        self._height_change = HeightChange(float(com[2]), height, float(trajectory.get_part_t_end(0.0)))
         self._dcm.start()
         self.steps_planned, self.steps_landed = len(footsteps) - 2, 0
         self.mode, self._support_side, self._anchor_foot = BalanceMode.WALKING, None, Foot.LEFT
@@ -319,13 +386,14 @@ class WalkingController:
             return
         self._tasks.update_tasks_from_trajectory(trajectory, t)
         self._hold_stance_feet(trajectory, t, measurement)
+        com_task = self._tasks.com_task
+        com_task.target_world = np.array([*np.array(com_task.target_world)[:2], self._height_change.at(t)])
         omega = math.sqrt(9.81 / self._generator_com_height())
         zmp = np.array(trajectory.get_p_world_ZMP(t, omega)[:2])
         offset = self.stabilizer.update(self.dt, zmp, measurement.wrench, measurement.cop, walking=True)
         if measurement.centre_of_mass is not None:
             planned = CentreOfMassMotion(np.array(trajectory.get_p_world_CoM(t)), np.array(trajectory.get_v_world_CoM(t)))
             offset = offset + self._dcm.shift(measurement.centre_of_mass, planned, omega, self._walk_time)
-        com_task = self._tasks.com_task
         com_task.target_world = np.array(com_task.target_world) + np.array([offset[0], offset[1], 0.0])
         self._track_support(trajectory, t, measurement)
         self._walk_time += self.dt

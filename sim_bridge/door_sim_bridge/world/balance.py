@@ -102,9 +102,10 @@ class BalanceLoop:
     def set_upper_body(self, targets: Mapping[str, float]) -> None:
         self.controller.set_upper_body(targets)
 
-    def walk(self, steps: Sequence[FootPlacement]) -> float:
-        """Start walking ``steps``; the walk's duration in s (0: nothing to walk)."""
-        return self.controller.walk(steps, self.measure().soles)
+    def walk(self, steps: Sequence[FootPlacement], crouch: float = 0.0) -> float:
+        """Start walking ``steps``, the pelvis ``crouch`` m below its standing height; the walk's
+        duration in s (0: nothing to walk)."""
+        return self.controller.walk(steps, self.measure().soles, crouch)
 
     def stop_walking(self) -> None:
         self.controller.stop()

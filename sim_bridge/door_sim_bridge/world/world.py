@@ -286,8 +286,10 @@ class DoorWorld:
         if self.balance is not None:
             raise SimulationError(f"{what} would teleport the physical robot (kinematic robot only)")
 
-    def walk(self, steps: Sequence[FootPlacement]) -> float:
-        """Start walking ``steps`` with the walking controller; the walk's duration (s).
+    def walk(self, steps: Sequence[FootPlacement], crouch: float = 0.0) -> float:
+        """Start walking ``steps`` with the walking controller, the pelvis ``crouch`` m below its
+        standing height (:meth:`~door_sim_bridge.walking.controller.WalkingController.walk`);
+        the walk's duration (s).
 
         SimulationError for the kinematic robot (its executions glide it), when fallen or
         already walking, or when no walking pattern exists for the steps.
@@ -296,7 +298,7 @@ class DoorWorld:
             raise SimulationError("the kinematic robot does not walk (FootstepExecution glides it)")
         if self.fallen:
             raise SimulationError(f"the robot has fallen ({self.balance.fall})")
-        return self.balance.walk(steps)
+        return self.balance.walk(steps, crouch)
 
     def stop_walking(self) -> None:
         """End a walk at the next stable stance (the foot in the air lands first)."""
