@@ -22,7 +22,7 @@ from typing import Any
 from diagnostic_msgs.msg import DiagnosticArray
 from nav_msgs.msg import Path
 from rclpy.node import Node
-from std_msgs.msg import String
+from std_msgs.msg import Float64, String
 from std_srvs.srv import SetBool
 from trajectory_msgs.msg import JointTrajectory
 
@@ -51,6 +51,7 @@ from door_sim_bridge.execution import Execution, FootstepExecution, TrajectoryEx
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS, NODE_NAME
 from door_sim_bridge.sensor_publication import SensorPublication
 from door_sim_bridge.simulation_loop import STEPS_PER_TICK, LoopReport, PublicationRates, SimulationLoop, Stream
+from door_sim_bridge.walking.controller import crouch_problem
 from door_sim_bridge.world import DoorWorld
 from door_sim_bridge.world_parameters import world_config
 
@@ -69,6 +70,8 @@ class SimBridgeNode(Node):
                                    p["real_time"], time.monotonic())
         self.heartbeat = Heartbeat(self)
         self.outcome_pub = create_contract_publisher(self, Topics.EXECUTION_OUTCOME)
+        self.crouch = 0.0  # m: the walks' crouch, as /walking/crouch set it last
+        create_contract_subscription(self, Topics.WALK_CROUCH, self._on_crouch)  # before the plans: taken first
         create_contract_subscription(self, Topics.ARM_TRAJECTORY, self._on_trajectory)
         create_contract_subscription(self, Topics.FOOTSTEP_PLAN, self._on_footsteps)
         create_contract_subscription(self, Topics.DIAGNOSTICS, self._on_diagnostics)
@@ -85,8 +88,21 @@ class SimBridgeNode(Node):
                          msg_to_joint_path, TrajectoryExecution.from_joint_path)
 
     def _on_footsteps(self, msg: Path) -> None:
+        crouch = self.crouch
         self._on_command(ExecutionKind.FOOTSTEPS, msg, "an empty footstep plan (stop at the next stable stance)",
-                         path_to_footsteps, FootstepExecution)
+                         path_to_footsteps, lambda world, steps: FootstepExecution(world, steps, crouch))
+
+    def _on_crouch(self, msg: Float64) -> None:
+        """The crouch of the walks to come; one outside [0, MAX_CROUCH] m is refused (the last
+        one stays) with a REJECTED footstep outcome (request id 0: it names no plan)."""
+        problem = crouch_problem(msg.data)
+        if problem:
+            self._report(ExecutionOutcome(ExecutionKind.FOOTSTEPS, 0, OutcomeStatus.REJECTED,
+                                          f"/walking/crouch refused: {problem}; walks keep {self.crouch:.3f} m"))
+            return
+        if msg.data != self.crouch:
+            self.get_logger().info(f"walks from now on {msg.data:.3f} m below the standing height")
+        self.crouch = float(msg.data)
 
     def _on_command(self, kind: ExecutionKind, msg: Any, stop_reason: str,
                     convert: Callable[[Any], Any], build: Callable[[DoorWorld, Any], Execution]) -> None:
@@ -142,7 +158,7 @@ class SimBridgeNode(Node):
         self.publication.publish(now, streams)
         if Stream.STATE in streams:  # a contained bug is an ERROR on /diagnostics (tick_faults counts them)
             self.heartbeat.update(Health.ERROR if self.loop.fault_count else Health.OK, "running",
-                                  **self.loop.status(time.monotonic()))
+                                  **self.loop.status(time.monotonic()), crouch=f"{self.crouch:.3f}")
 
     def destroy_node(self) -> None:
         self.world.close()

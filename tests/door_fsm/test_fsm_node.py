@@ -10,9 +10,9 @@ from std_msgs.msg import String
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
-from door_contract.payloads import DoorEstimate, TaskReport, decode, encode
+from door_contract.payloads import DoorEstimate, FootstepRequest, TaskReport, decode, encode
 from door_contract.topics import Topics
-from door_contract.vocabulary import AttemptOutcome, HingeSide, TaskState
+from door_contract.vocabulary import AttemptOutcome, HingeSide, TaskState, WalkGoal
 
 pytestmark = pytest.mark.ros
 ESTIMATE = DoorEstimate(0.0, "odom", (1.2, -0.35, 0.95), (-1.0, 0.0, 0.0), HingeSide.LEFT, 0.914,
@@ -32,6 +32,11 @@ class Peer:
         create_contract_subscription(self.node, Topics.TASK_STATE, self._on_state)
         create_contract_subscription(self.node, Topics.APPROVAL_REQUEST,
                                      lambda m: m.data and self.requests.append(m.data))
+        self.walk_messages = []  # ("crouch", m) and ("request", goal), in arrival order
+        create_contract_subscription(self.node, Topics.WALK_CROUCH,
+                                     lambda m: self.walk_messages.append(("crouch", m.data)))
+        create_contract_subscription(self.node, Topics.FOOTSTEP_REQUEST,
+                                     lambda m: self.walk_messages.append(("request", decode(FootstepRequest, m.data).goal)))
         self.reports = []
         self.watching = []  # required nodes the supervisor reports having seen
         self.messages = []  # its diagnostics messages
@@ -80,6 +85,16 @@ def test_approval_request_then_operator_silence_times_out(supervisor):
     report = supervisor.reports[-1]
     assert report.final_state == "FAILED" and "operator did not answer" in report.failure_reason
     assert report.attempts[0].state is TaskState.DETECT_DOOR and report.attempts[0].outcome is AttemptOutcome.TIMEOUT
+
+
+def test_each_walk_request_sets_the_walks_crouch_first(supervisor):
+    """/walking/crouch is set when a walk is asked for, before its plan can exist: the walk to
+    the door upright (TALOS crouches only through a push door whose lever meets its pelvis)."""
+    assert supervisor.wait(lambda: supervisor.requests), supervisor.log_path.read_text()
+    supervisor.say("approve 1")
+    assert supervisor.wait(lambda: ("request", WalkGoal.STAND) in supervisor.walk_messages), supervisor.walk_messages
+    assert supervisor.wait(lambda: ("crouch", 0.0) in supervisor.walk_messages), supervisor.walk_messages
+    assert [kind for kind, _ in supervisor.walk_messages].count("crouch") == 1  # one walk, one crouch
 
 
 def test_reject_pause_resume_abort_and_unknown_command(supervisor):

@@ -33,7 +33,7 @@ from door_fsm.graph_watch import GraphWatch
 from door_fsm.machine import MachineOptions
 from door_fsm.records import Instant
 from door_fsm.supervisor import GRASP_SERVICES, SupervisedRobot, Supervisor
-from door_robot.profile import load_profile
+from door_robot.profile import PassageCrouch, load_profile
 
 HANDS_ONLY = ((Side.LEFT, frozenset()), (Side.RIGHT, frozenset()))
 """Both hands, their chains unnamed: what these tests need of a robot."""
@@ -219,3 +219,25 @@ def test_the_report_waits_for_a_terminal_state_and_names_how_the_task_ended() ->
     report = supervisor.report("sim")
     assert report is not None and report.final_state is TaskEnd.FAILED
     assert [(a.state, a.outcome) for a in report.attempts] == [(TaskState.DETECT_DOOR, AttemptOutcome.ABORTED)]
+
+
+def test_a_push_door_is_walked_through_crouched_when_its_lever_meets_the_pelvis() -> None:
+    """The walk's crouch (door_robot.profile.PassageCrouch) comes from the approved estimate's
+    lever height: through a push door with the lever in the band, and only then."""
+    crouching = SupervisedRobot("talos", 1.5, HANDS_ONLY, PassageCrouch((0.90, 1.00), 0.06, min_door_width=0.87))
+    push = _started(crouching)
+    stand = _walk_request(push)
+    push.door.approved = ESTIMATE  # the lever at 0.95 m
+    through = act.RequestFootsteps(stand.request_id + 1, WalkGoal.THROUGH)
+    assert push.walk_crouch(stand) == 0.0 and push.walk_crouch(through) == pytest.approx(0.06)
+    push.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "handle_position": (1.2, -0.35, 1.05)})
+    assert push.walk_crouch(through) == 0.0  # above the band
+    push.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "width": 0.84})
+    assert push.walk_crouch(through) == 0.0  # a narrow door
+    pull = _started(crouching, DoorOpening.PULL)
+    pull.door.approved = ESTIMATE
+    assert pull.walk_crouch(through) == 0.0
+    upright = _started(SupervisedRobot("g1", 0.8, HANDS_ONLY))
+    upright.door.approved = ESTIMATE
+    assert upright.walk_crouch(through) == 0.0  # a profile without a crouch
+    assert SupervisedRobot.of(load_profile("talos")).push_passage_crouch == load_profile("talos").push_passage_crouch

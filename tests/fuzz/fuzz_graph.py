@@ -68,7 +68,7 @@ class Observer:
         self.sent_plans: list[PathMsg] = []  # what reached /footstep_plan
         self._subscribe()
         topics = ("FOOTSTEP_REQUEST", "MOTION_REQUEST", "FOOTSTEP_CANCEL", "MOTION_CANCEL", "ARM_TRAJECTORY",
-                  "FOOTSTEP_PLAN", "OPERATOR", "DIAGNOSTICS", "DOOR_ESTIMATE", "SCRIBBLE")
+                  "FOOTSTEP_PLAN", "OPERATOR", "DIAGNOSTICS", "DOOR_ESTIMATE", "SCRIBBLE", "WALK_CROUCH")
         self.pubs = {name: create_contract_publisher(self.node, getattr(Topics, name)) for name in topics}
         self.grasp = {spec.name: self.node.create_client(spec.srv_class(), spec.name, qos_profile=SERVICE.to_profile())
                       for spec in Services.all()}

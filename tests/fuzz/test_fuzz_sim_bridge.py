@@ -11,6 +11,7 @@ from fuzz_graph import STILL_BASE, Observer
 from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path as PathMsg
 from ros_helpers import start_node, stop_node
+from std_msgs.msg import Float64
 from std_srvs.srv import SetBool
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
@@ -132,6 +133,28 @@ def test_bad_footstep_plans_are_rejected_and_move_nothing(bridge):
         assert outcome.status is OutcomeStatus.REJECTED and words in outcome.reason, (name, outcome.reason)
     _assert_still(bridge, before)
     bridge.assert_lives(bridge.process, "sim_bridge")
+
+
+def test_a_bad_crouch_is_refused_and_a_good_one_lowers_the_next_walk(bridge):
+    """/walking/crouch: a value the walker cannot take is REJECTED (request id 0: it names no
+    plan), moves nothing and leaves the crouch as it was; a good one is taken (the heartbeat
+    says so) and the next walk goes that much lower; back at 0 the next walk stands up again."""
+    before = bridge.settled_state()
+    for value, words in ((math.nan, "not a finite number"), (-0.02, "outside"), (0.4, "outside")):
+        count = len(bridge.answers("execution", 0))
+        bridge.pubs["WALK_CROUCH"].publish(Float64(data=value))
+        assert bridge.wait(lambda n=count: len(bridge.answers("execution", 0)) > n), value
+        outcome = bridge.answers("execution", 0)[-1]
+        assert outcome.status is OutcomeStatus.REJECTED and words in outcome.reason, outcome.reason
+        assert "walks keep 0.000 m" in outcome.reason
+    _assert_still(bridge, before)
+    bridge.assert_lives(bridge.process, "sim_bridge")
+    for crouch, height in ((0.06, before.base[2] - 0.06), (0.0, before.base[2])):
+        bridge.pubs["WALK_CROUCH"].publish(Float64(data=crouch))
+        assert bridge.wait(lambda c=crouch: bridge.values.get("sim_bridge", {}).get("crouch") == f"{c:.3f}")
+        request_id = _send(bridge, "FOOTSTEP_PLAN", footsteps_to_path(bridge.walk_plan(2)))
+        assert bridge.wait_answer("execution", request_id, 60.0).status is OutcomeStatus.SUCCESS
+        assert bridge.settled_state().base[2] == pytest.approx(height, abs=0.01)
 
 
 def test_a_stop_with_nothing_running_moves_nothing(bridge):

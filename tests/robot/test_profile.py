@@ -4,9 +4,10 @@ import numpy as np
 import pytest
 import yaml
 
+from door_contract.vocabulary import DoorOpening, WalkGoal
 from door_robot.errors import RobotModelError
 from door_robot.locations import params_dir
-from door_robot.profile import CameraAxes, load_profile
+from door_robot.profile import CameraAxes, PassageCrouch, load_profile, walk_crouch
 
 
 def _profile_with_axes(tmp_path, axes) -> str:
@@ -108,6 +109,40 @@ def test_a_bad_beside_grasp_is_refused(tmp_path, axes, message):
     document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
     document["arms"]["right"]["grasp_axes_beside"] = axes
     path = tmp_path / "robot_bad_beside.yaml"
+    path.write_text(yaml.safe_dump(document))
+    with pytest.raises(RobotModelError, match=message):
+        load_profile(str(path))
+
+
+def test_a_push_door_whose_lever_meets_the_pelvis_is_walked_through_crouched():
+    crouch = PassageCrouch((1.00, 1.05), 0.06, min_door_width=0.87)
+    assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.03, 0.95) == 0.06
+    assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 0.95, 0.95) == 0.0  # below the band
+    assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.07, 0.95) == 0.0  # above it
+    assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.03, 0.85) == 0.0  # a narrow door: upright
+    assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PULL, 1.03, 0.95) == 0.0  # a pull passage is upright
+    assert crouch.for_walk(WalkGoal.STAND, DoorOpening.PUSH, 1.03, 0.95) == 0.0  # so is the walk to the door
+    assert walk_crouch(None, WalkGoal.THROUGH, DoorOpening.PUSH, (1.03, 0.95)) == 0.0
+    assert walk_crouch(crouch, WalkGoal.THROUGH, DoorOpening.PUSH, None) == 0.0
+    assert walk_crouch(crouch, WalkGoal.THROUGH, DoorOpening.PUSH, (1.01, 0.87)) == 0.06
+
+
+def test_talos_alone_crouches_through_a_push_door():
+    talos = load_profile("talos").push_passage_crouch
+    assert talos is not None and 0.0 < talos.crouch <= 0.10 and talos.lever_heights[0] < 1.032 < talos.lever_heights[1]
+    assert load_profile("g1").push_passage_crouch is None
+
+
+@pytest.mark.parametrize("crouch, message", [
+    ({"lever_heights": [1.05, 1.00], "crouch": 0.05}, "lever_heights must be increasing"),
+    ({"lever_heights": [1.00, 1.05], "crouch": 0.3}, r"crouch must be within \(0, 0.15\]"),
+    ({"lever_heights": [1.00, 1.05], "crouch": 0.05, "depth": 1}, r"unknown field\(s\) \['depth'\]"),
+    ({"lever_heights": [1.00, 1.05], "crouch": 0.05, "min_door_width": -1}, "min_door_width must be"),
+])
+def test_a_bad_passage_crouch_is_refused(tmp_path, crouch, message):
+    document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
+    document["push_passage_crouch"] = crouch
+    path = tmp_path / "robot_g1_variant.yaml"
     path.write_text(yaml.safe_dump(document))
     with pytest.raises(RobotModelError, match=message):
         load_profile(str(path))

@@ -49,7 +49,7 @@ from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeS
 from door_fsm.wiring import WiringError, success_sequence
 from door_fsm.work import STATE_WORK, WorkKind
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import load_profile
+from door_robot.profile import load_profile, walk_crouch
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import ExecutionResult, FootstepExecution, TrajectoryExecution
 from door_sim_bridge.world import ContactSolver, DoorConfig, DoorWorld, StanceConfig, WindConfig, WorldConfig
@@ -330,15 +330,17 @@ def measured_snapshot(world: DoorWorld, estimate: DoorEstimate) -> Snapshot:
 def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: WalkPlanners,
           options: FootstepPlannerOptions, settings: GoalSettings, peaks: dict[str, float],
           trace: FallTrace | None = None) -> tuple[str, str]:
-    """Plan the walk to ``goal`` from the measured state and walk it, recording peak contact
-    forces: (status, reason)."""
+    """Plan the walk to ``goal`` from the measured state and walk it at the profile's crouch for
+    it, recording peak contact forces: (status, reason)."""
     request = FootstepRequest(0, goal, world.config.door.opening, world.door_state().hinge_angle)
     problem = problem_for_request(request, measured_snapshot(world, estimate), options, settings)
     result, _ = planners.plan(problem, options_for_problem(problem, goal, options))
     if not result.succeeded or result.plan is None:
         return "planning failed", f"{result.outcome.value}: {result.reason}"
-    walked = run_recording(world, FootstepExecution(world, contract_footsteps(problem.start, result.plan)), peaks,
-                           trace)
+    crouch = walk_crouch(world.profile.push_passage_crouch, goal, world.config.door.opening,
+                         (estimate.handle_position[2], estimate.width))  # as the FSM sets it
+    walked = run_recording(world, FootstepExecution(world, contract_footsteps(problem.start, result.plan), crouch),
+                           peaks, trace)
     if walked is None:
         return "failure", "the walk ended without an outcome"
     return walked.status.value, walked.reason

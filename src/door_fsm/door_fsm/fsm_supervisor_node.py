@@ -14,7 +14,7 @@ from typing import Any
 
 from rclpy.clock import Clock, ClockType
 from rclpy.node import Node
-from std_msgs.msg import String
+from std_msgs.msg import Float64, String
 from std_srvs.srv import SetBool
 
 from door_contract.converters.diagnostics import Health
@@ -65,7 +65,7 @@ class FsmSupervisorNode(Node):
             act.Look: lambda a: self.commands.send(a.trajectory),  # the head search's: no outcome awaited
             act.EndLook: lambda a: self.commands.hold_arm()}
         self.pubs = {topic: create_contract_publisher(self, topic) for topic in (
-            Topics.TASK_STATE, Topics.APPROVAL_REQUEST, Topics.TASK_REPORT,
+            Topics.TASK_STATE, Topics.APPROVAL_REQUEST, Topics.TASK_REPORT, Topics.WALK_CROUCH,
             *(t for topics in PLANNER_TOPICS.values() for t in (topics.request, topics.cancel)))}
         self.commands = RobotCommands(self)
         self._subscribe()
@@ -128,6 +128,12 @@ class FsmSupervisorNode(Node):
         self.get_logger().info(f"waiting for the operator: {action.text}")
 
     def _request(self, action: act.RequestFootsteps | act.RequestMotion) -> None:
+        if isinstance(action, act.RequestFootsteps):  # the walk's crouch is set before its plan can exist
+            crouch = self.core.walk_crouch(action)
+            self.pubs[Topics.WALK_CROUCH].publish(Float64(data=crouch))
+            if crouch > 0.0:
+                self.get_logger().info(f"the walk {action.goal} goes {crouch:.3f} m below the standing height "
+                                       "(the lever at the pelvis)")
         kind, request = self.core.request(action)
         self.pubs[PLANNER_TOPICS[kind].request].publish(String(data=encode(request)))
 

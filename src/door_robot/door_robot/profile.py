@@ -34,11 +34,12 @@ from typing import Any
 import numpy as np
 import yaml
 
-from door_contract.vocabulary import Side
+from door_contract.vocabulary import DoorOpening, Side, WalkGoal
 from door_robot.errors import RobotModelError
 from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
 
-__all__ = ["STANCE_FIELDS", "ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "RobotProfile", "WalkingLimits", "load_profile",
+__all__ = ["STANCE_FIELDS", "ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "PassageCrouch", "RobotProfile", "WalkingLimits", "load_profile",
+           "walk_crouch",
            "profile_path", "resolve_urdf"]
 
 
@@ -184,6 +185,56 @@ class WalkingLimits:
 
 
 @dataclass(frozen=True)
+class PassageCrouch:
+    """How low the robot walks through a push door whose lever meets its pelvis.
+
+    Passing a push door sideways, the robot's back holds the leaf open, and the lever on the
+    leaf's near side rides along the back. At TALOS's walking height a lever at 1.00–1.04 m
+    lies in the notch between the pelvis's collision hull (its top 3.5 cm above the base) and
+    the torso's, and the pelvis, rising ~1 cm at each step, lifts it against its stop: 1–7 kN,
+    and the robot falls. Walking ``crouch`` m lower puts the notch below such a lever, which
+    then slides on the torso's back. Measured on the passage rig (stop 36, walked from 2.5 m,
+    the detector's error): four such doors 0.91–0.97 m wide passed 2 of 15 times upright, 13 of
+    15 at 0.08 m; two narrower ones (0.81, 0.85 m) 7 of 8 upright and 2 of 8 at 0.08 m — doors
+    narrower than ``min_door_width`` are passed upright.
+    """
+
+    lever_heights: tuple[float, float]  # m above the floor: levers in this band meet the notch
+    crouch: float  # m below the standing height, for such doors
+    min_door_width: float = 0.0  # m: narrower leaves are passed upright
+
+    def __post_init__(self) -> None:
+        low, high = self.lever_heights
+        if not (math.isfinite(low) and math.isfinite(high) and 0.0 < low < high):
+            raise RobotModelError(f"push_passage_crouch: lever_heights must be increasing positive metres, "
+                                  f"got {self.lever_heights}")
+        if not (math.isfinite(self.crouch) and 0.0 < self.crouch <= 0.15):
+            raise RobotModelError(f"push_passage_crouch: crouch must be within (0, 0.15] m, got {self.crouch!r}")
+        if not (math.isfinite(self.min_door_width) and self.min_door_width >= 0.0):
+            raise RobotModelError(f"push_passage_crouch: min_door_width must be finite and ≥ 0 m, "
+                                  f"got {self.min_door_width!r}")
+
+    def for_walk(self, goal: WalkGoal, opening: DoorOpening, lever_height: float, door_width: float) -> float:
+        """The crouch (m) of a walk to ``goal``: :attr:`crouch` through a push door at least
+        :attr:`min_door_width` wide whose lever (``lever_height``, m above the floor) is in the
+        band, else 0 (upright)."""
+        low, high = self.lever_heights
+        through_push = goal is WalkGoal.THROUGH and opening is DoorOpening.PUSH
+        wide = door_width >= self.min_door_width
+        return self.crouch if through_push and wide and low <= lever_height <= high else 0.0
+
+
+def walk_crouch(crouch: PassageCrouch | None, goal: WalkGoal, opening: DoorOpening,
+                door: tuple[float, float] | None) -> float:
+    """How far below its standing height the pelvis walks to ``goal`` (m): ``crouch``'s
+    (a profile's ``push_passage_crouch``) for the ``door``'s (lever height, width) in m; 0
+    without one or when the door is not known."""
+    if crouch is None or door is None:
+        return 0.0
+    return crouch.for_walk(goal, opening, *door)
+
+
+@dataclass(frozen=True)
 class RobotProfile:
     name: str
     urdf_path: Path
@@ -199,6 +250,7 @@ class RobotProfile:
     head_camera_axes: CameraAxes | None = None  # the optical axes in head_camera_frame; None: the sim's guess
     look_posture: dict[str, float] = field(default_factory=dict)  # joint -> rad over the walking posture, to see the door
     stance: dict[str, float] = field(default_factory=dict)  # footstep planner stand distance -> m (STANCE_FIELDS)
+    push_passage_crouch: PassageCrouch | None = None  # None: every walk upright
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
@@ -281,7 +333,19 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         head_camera_axes=_camera_axes(document.get("head_camera_axes")),
         look_posture=_posture(document, "look_posture"),
         stance=_stance(document.get("stance")),
+        push_passage_crouch=_passage_crouch(document.get("push_passage_crouch")),
     )
+
+
+def _passage_crouch(document: Any) -> PassageCrouch | None:
+    if document is None:
+        return None
+    known = {"lever_heights", "crouch", "min_door_width"}
+    unknown = sorted(set(document) - known)
+    if unknown:
+        raise RobotModelError(f"push_passage_crouch: unknown field(s) {unknown}; known: {sorted(known)}")
+    low, high = (float(v) for v in document["lever_heights"])
+    return PassageCrouch((low, high), float(document["crouch"]), float(document.get("min_door_width", 0.0)))
 
 
 def _grasp_axes_beside(document: Any) -> GraspAxes | None:
