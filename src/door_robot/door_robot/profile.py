@@ -194,8 +194,8 @@ class PassageCrouch:
     the torso's, and the pelvis, rising ~1 cm at each step, lifts it against its stop: 1–7 kN,
     and the robot falls. Walking ``crouch`` m lower puts the notch below such a lever, which
     then slides on the torso's back. Measured on the passage rig (stop 36, walked from 2.5 m,
-    the detector's error): four such doors 0.91–0.97 m wide passed 2 of 15 times upright, 13 of
-    15 at 0.08 m; two narrower ones (0.81, 0.85 m) 7 of 8 upright and 2 of 8 at 0.08 m — doors
+    the detector's error): four such doors 0.91–0.97 m wide passed 2 of 16 times upright, 13 of
+    16 at 0.08 m; two narrower ones (0.81, 0.85 m) 7 of 8 upright and 2 of 8 at 0.08 m — doors
     narrower than ``min_door_width`` are passed upright.
     """
 
