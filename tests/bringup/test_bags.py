@@ -61,18 +61,24 @@ def test_playback_timing_scales_with_rate():
     assert playback_offsets([5_000_000_000, 6_000_000_000, 9_000_000_000], 2.0) == [0.0, 0.5, 2.0]
     with pytest.raises(PlaybackOptionsError, match="rate"):
         PlaybackOptions(rate=0.0)
+    with pytest.raises(PlaybackOptionsError, match="--wait-for-all-acked"):
+        PlaybackOptions(wait_for_all_acked_s=-1.0)
 
 
-def _receive_all(context, node, topics_and_types, expected_count, command, workspace):
+def _receive_all(context, node, messages, command, workspace):
+    """Subscribe to the topics of ``messages``, run the player and spin until every one of
+    them arrived (byte for byte) and the player exited, or 60 s. Counting arrivals would not do:
+    /rosout also carries the player's own log lines."""
+    topics_and_types = {m.topic: m.type_name for m in messages}
     received = {topic: [] for topic in topics_and_types}
     for topic, type_name in topics_and_types.items():
         node.create_subscription(interface_class(type_name), topic,
-                                 lambda data, t=topic: received[t].append(data), 100, raw=True)
+                                 lambda data, t=topic: received[t].append(bytes(data)), 100, raw=True)
     executor = executor_for(node, context)
     process = subprocess.Popen(command, env=workspace.environment(), stdout=subprocess.PIPE,
                                stderr=subprocess.STDOUT, text=True)
     try:
-        spin_until(executor, lambda: sum(map(len, received.values())) >= expected_count
+        spin_until(executor, lambda: all(m.data in received[m.topic] for m in messages)
                    and process.poll() is not None, 60.0)
     finally:
         if process.poll() is None:
@@ -87,14 +93,11 @@ def test_player_delivers_every_message_of_real_bags(shared_data, workspace, rclp
     bag = shared_data / "bags" / folder
     messages = list(read_messages(bag))
     node = rclpy.create_node("bag_play_test", context=rclpy_context)
-    types = {m.topic: m.type_name for m in messages}
     command = [str(workspace.executable("door_bringup", "bag_play")), str(bag), "--rate", "20",
-               "--wait-for-subscribers", "20"]
-    received, output = _receive_all(rclpy_context, node, types, len(messages), command, workspace)
-    for topic in types:
-        got = [bytes(d) for d in received[topic]]
-        for message in (m for m in messages if m.topic == topic):
-            assert message.data in got, f"{topic}: a message of the bag was not delivered\n{output}"
+               "--wait-for-subscribers", "20", "--wait-for-all-acked", "10"]
+    received, output = _receive_all(rclpy_context, node, messages, command, workspace)
+    for message in messages:
+        assert message.data in received[message.topic], f"{message.topic}: a message of the bag was not delivered\n{output}"
     node.destroy_node()
 
 

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import rclpy
+from rclpy.duration import Duration
 from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import QoSProfile
@@ -44,12 +45,15 @@ class PlaybackOptions:
     publish_clock: bool = False
     topics: tuple[str, ...] | None = None
     wait_for_subscribers_s: float = 0.0  # wait (bounded) until each topic has a subscriber
+    wait_for_all_acked_s: float = 0.0  # after the last message, wait (bounded) until every one is acknowledged
 
     def __post_init__(self) -> None:
         if not (self.rate > 0.0 and self.rate < float("inf")):
             raise PlaybackOptionsError(f"--rate must be a finite number > 0, got {self.rate:g}")
         if not self.wait_for_subscribers_s >= 0.0:
             raise PlaybackOptionsError(f"--wait-for-subscribers must be ≥ 0 s, got {self.wait_for_subscribers_s:g}")
+        if not (self.wait_for_all_acked_s >= 0.0 and self.wait_for_all_acked_s < float("inf")):
+            raise PlaybackOptionsError(f"--wait-for-all-acked must be finite and ≥ 0 s, got {self.wait_for_all_acked_s:g}")
 
 
 class PlaybackOptionsError(Exception):
@@ -127,7 +131,22 @@ class BagPlayer(Node):
                 self.clock_publisher.publish(Clock(clock=to_time_msg(seconds)))
             publisher.publish(message.data)
             self.published += 1
+        self.wait_for_all_acked()
         return self.published
+
+    def wait_for_all_acked(self) -> bool:
+        """Wait (at most ``wait_for_all_acked_s``) until every reliable subscriber has
+        acknowledged every message, as ``ros2 bag play --wait-for-all-acked`` does: a player that
+        exits at once can take its last messages with it from a subscriber slow to read them (a
+        loaded machine). Best-effort topics count as acknowledged. Whether all were."""
+        deadline = time.monotonic() + self.options.wait_for_all_acked_s
+        acked = True
+        for publisher in self.publishers_by_topic.values():
+            remaining = deadline - time.monotonic()
+            if remaining <= 0.0:
+                return False
+            acked = publisher.wait_for_all_acked(Duration(nanoseconds=int(remaining * 1e9))) and acked
+        return acked
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -138,10 +157,12 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--clock", action="store_true", help="publish /clock from the bag's time")
     parser.add_argument("--topics", nargs="+", default=None)
     parser.add_argument("--wait-for-subscribers", type=float, default=0.0, metavar="SECONDS")
+    parser.add_argument("--wait-for-all-acked", type=float, default=0.0, metavar="SECONDS",
+                        help="after the last message, wait up to SECONDS until reliable subscribers acknowledged all")
     args, ros_args = parser.parse_known_args(argv)
     try:
         options = PlaybackOptions(args.rate, args.clock, tuple(args.topics) if args.topics else None,
-                                  args.wait_for_subscribers)
+                                  args.wait_for_subscribers, args.wait_for_all_acked)
         messages = list(read_messages(args.bag, options.topics))
         offers = recorded_qos(args.bag) if args.bag.is_dir() else {}
     except PlaybackOptionsError as error:
