@@ -43,6 +43,7 @@ from door_robot.profile import WalkingLimits
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution.base import Execution
 from door_sim_bridge.walking.controller import crouch_problem
+from door_sim_bridge.walking.gait import smooth_blend
 from door_sim_bridge.world.world import DoorWorld
 
 __all__ = ["STILL_RADIUS", "STILL_TIME", "STILL_TIMEOUT", "FootstepExecution", "blend_poses", "relative_step",
@@ -114,11 +115,6 @@ def validate_footsteps(steps: Sequence[FootPlacement], current: Mapping[Foot, Fo
             return problem
         feet[step.foot] = step
     return None
-
-
-def smooth_blend(tau: float) -> float:
-    """Cosine ease from 0 to 1 over tau in [0, 1], zero slope at both ends."""
-    return 0.5 - 0.5 * math.cos(math.pi * min(max(tau, 0.0), 1.0))
 
 
 def blend_poses(start: np.ndarray, end: np.ndarray, weight: float) -> np.ndarray:

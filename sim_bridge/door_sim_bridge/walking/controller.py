@@ -34,16 +34,16 @@ import placo
 
 from door_contract.converters.footsteps import FootPlacement
 from door_contract.vocabulary import Foot
-from door_robot.profile import RobotProfile
+from door_robot.profile import MAX_CROUCH, RobotProfile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.walking.dcm import CentreOfMassMotion, DcmFeedback, PatternDeparture
-from door_sim_bridge.walking.gait import GaitOptions, footstep_sequence, placo_parameters
+from door_sim_bridge.walking.gait import GaitOptions, footstep_sequence, placo_parameters, smooth_blend
 from door_sim_bridge.walking.model import PLACO_TRUNK_FRAME, joint_split, load_placo_robot
 from door_sim_bridge.walking.stabilizer import ContactWrench, Stabilizer, StabilizerOptions
 from door_sim_bridge.walking.support import into_polygon, support_polygon
 
-__all__ = ["MAX_CROUCH", "crouch_problem", "START_INSET", "BalanceMode", "HeightChange", "Measurement", "WalkingController", "level_frame", "mean_yaw", "offset_in_stance",
-           "stance_frame", "supports_from", "yaw_rotation"]
+__all__ = ["START_INSET", "BalanceMode", "HeightChange", "Measurement", "WalkingController", "crouch_problem",
+           "level_frame", "mean_yaw", "offset_in_stance", "stance_frame", "supports_from", "yaw_rotation"]
 
 START_INSET = 0.005
 """m a walk's starting CoM is kept inside the pattern's ZMP region (``zmp_margin`` in from the
@@ -52,8 +52,6 @@ soles' edges), so that placo's QP starts strictly feasible."""
 
 HEIGHT_PROBE = 0.02  # m the trunk is lowered on the model to measure how the CoM follows it
 HEIGHT_PROBE_TICKS = 200  # IK ticks for it (velocity-limited: 0.8 s of motion at the control rate)
-MAX_CROUCH = 0.15
-"""m a walk may crouch below the standing height (TALOS's knees bend 0.34 rad more for 0.10 m)."""
 
 
 def crouch_problem(crouch: object) -> str:
@@ -75,8 +73,8 @@ class HeightChange:
     duration: float
 
     def at(self, t: float) -> float:
-        tau = min(max(t / self.duration, 0.0), 1.0) if self.duration > 0.0 else 1.0
-        return self.start + (self.end - self.start) * (0.5 - 0.5 * math.cos(math.pi * tau))
+        tau = t / self.duration if self.duration > 0.0 else 1.0
+        return self.start + (self.end - self.start) * smooth_blend(tau)
 
 
 class BalanceMode(str, Enum):
@@ -350,7 +348,7 @@ class WalkingController:
                                         walking=False)
         shift = np.array([offset[0], offset[1], 0.0])
         if self.settling:
-            blend = 0.5 - 0.5 * math.cos(math.pi * min(1.0, self._settle_time / self.gait.settle_s))
+            blend = smooth_blend(self._settle_time / self.gait.settle_s)
             self._settle_time += self.dt
             self._tasks.trunk_mode = False
             com = (1.0 - blend) * self._com_from + blend * self._com_target

@@ -22,7 +22,7 @@ from door_contract.converters.footsteps import FootPlacement
 from door_contract.vocabulary import Foot
 from door_sim_bridge.validation import FieldRange, check_ranges
 
-__all__ = ["GaitOptions", "footstep_sequence", "is_in_place", "placo_parameters", "planar_frame"]
+__all__ = ["GaitOptions", "footstep_sequence", "is_in_place", "placo_parameters", "planar_frame", "smooth_blend"]
 
 SIDE_OF_FOOT = {Foot.LEFT: placo.HumanoidRobot_Side.left, Foot.RIGHT: placo.HumanoidRobot_Side.right}
 
@@ -79,6 +79,11 @@ def placo_parameters(gait: GaitOptions, foot_length: float, foot_width: float, f
     parameters.zmp_margin = gait.zmp_margin
     parameters.walk_max_dtheta = 1.0
     return parameters
+
+
+def smooth_blend(tau: float) -> float:
+    """Cosine ease from 0 to 1 over tau in [0, 1], zero slope at both ends."""
+    return 0.5 - 0.5 * math.cos(math.pi * min(max(tau, 0.0), 1.0))
 
 
 def planar_frame(x: float, y: float, yaw: float) -> np.ndarray:

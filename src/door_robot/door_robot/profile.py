@@ -38,7 +38,7 @@ from door_contract.vocabulary import DoorOpening, Side, WalkGoal
 from door_robot.errors import RobotModelError
 from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
 
-__all__ = ["STANCE_FIELDS", "ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "PassageCrouch", "RobotProfile", "WalkingLimits", "load_profile",
+__all__ = ["MAX_CROUCH", "STANCE_FIELDS", "ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "PassageCrouch", "RobotProfile", "WalkingLimits", "load_profile",
            "walk_crouch",
            "profile_path", "resolve_urdf"]
 
@@ -184,6 +184,11 @@ class WalkingLimits:
     body_offset: float = 0.0  # m, the body box's centre ahead of the base (arms reach further forward than back)
 
 
+MAX_CROUCH = 0.15
+"""m the pelvis may go below its standing height in a walk: the most a profile may ask for and
+the walker takes (TALOS's knees bend 0.34 rad more for 0.10 m)."""
+
+
 @dataclass(frozen=True)
 class PassageCrouch:
     """How low the robot walks through a push door whose lever meets its pelvis.
@@ -208,8 +213,8 @@ class PassageCrouch:
         if not (math.isfinite(low) and math.isfinite(high) and 0.0 < low < high):
             raise RobotModelError(f"push_passage_crouch: lever_heights must be increasing positive metres, "
                                   f"got {self.lever_heights}")
-        if not (math.isfinite(self.crouch) and 0.0 < self.crouch <= 0.15):
-            raise RobotModelError(f"push_passage_crouch: crouch must be within (0, 0.15] m, got {self.crouch!r}")
+        if not (math.isfinite(self.crouch) and 0.0 < self.crouch <= MAX_CROUCH):
+            raise RobotModelError(f"push_passage_crouch: crouch must be within (0, {MAX_CROUCH}] m, got {self.crouch!r}")
         if not (math.isfinite(self.min_door_width) and self.min_door_width >= 0.0):
             raise RobotModelError(f"push_passage_crouch: min_door_width must be finite and ≥ 0 m, "
                                   f"got {self.min_door_width!r}")
