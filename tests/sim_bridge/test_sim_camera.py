@@ -114,3 +114,18 @@ def test_the_light_direction_shades_the_leaf():
     assert _leaf_level((1.0, 0.0, 0.2)) == pytest.approx(red * 0.60, abs=2.0)
     default = CameraConfig().light_direction
     assert _leaf_level(default) == pytest.approx(red * (0.6 + 0.35 * 50 / np.linalg.norm(default)), abs=2.0)
+
+
+def test_the_physical_robots_floor_is_drawn_in_the_floor_colour():
+    """The collision plane under the physical robot must not be drawn: PyBullet draws a body
+    without a visual by its collision shape, a checker plane that covered the scene's floor
+    colour in every physical world (and flickered with it where the two coincide)."""
+    blue = (0.1, 0.1, 0.9)
+    config = WorldConfig(door=DoorConfig(floor_colour=blue), stance=STANCE, camera=CameraConfig(head_pitch=0.6))
+    with DoorWorld(config) as world:
+        assert world.physical
+        frame = world.render()
+    floor = np.abs(_points_in_odom(frame)[..., 2]) < 0.005
+    assert floor.sum() > 20000  # the head looks down at the floor
+    in_colour = _colour_mask(frame.rgb, blue, erode=0, tolerance=30.0)
+    assert in_colour[floor].mean() > 0.99

@@ -34,10 +34,13 @@ MIN_SUPPORT_FORCE = 1.0  # N of floor contact below which the robot is in the ai
 
 
 def make_floor(client: PhysicsClient, friction: float) -> int:
-    """An infinite static plane z = 0 that collides (the scene's floor is visual only)."""
+    """An infinite static plane z = 0 that collides, and is invisible: the scene's floor is
+    visual only and carries the floor colour. (PyBullet draws a body without a visual shape
+    by its collision shape, a plane in a checker texture, which would cover that colour.)"""
     shape = client.createCollisionShape(pybullet.GEOM_PLANE)
     floor: int = client.createMultiBody(0.0, shape)
     client.changeDynamics(floor, -1, lateralFriction=friction)
+    client.changeVisualShape(floor, -1, rgbaColor=[0.5, 0.5, 0.5, 0.0])  # alpha 0: not drawn
     return floor
 
 
