@@ -70,8 +70,9 @@ class Look:
 
 @dataclass(frozen=True)
 class EndLook:
-    """The head search is over (the door is confirmed): stop its neck move if one still runs,
-    with an empty JointTrajectory (the neck holds where it is), so the robot is free for the walk."""
+    """The head search is over (the door is confirmed) or its next look replaces the last: stop
+    the neck move if one still runs, with an empty JointTrajectory (the neck holds where it is),
+    so the robot is free for the walk or the next look."""
 
 
 @dataclass(frozen=True)

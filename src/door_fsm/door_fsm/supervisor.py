@@ -152,7 +152,12 @@ class Supervisor:
         DETECT_DOOR waits for an estimate (not paused, stopped or in any other state), and only
         a well-formed one that moves no arm (:func:`look_problem`; else a notice, nothing moves).
         The estimate that confirms the door ends the search: a look still moving is stopped
-        (:class:`~door_fsm.actions.EndLook`), or the walk would find the robot busy with it."""
+        (:class:`~door_fsm.actions.EndLook`), or the walk would find the robot busy with it.
+        Likewise a look replaces the one before it, which is stopped first: the robot refuses a
+        trajectory while another runs, and the search, which moves on once the neck is within
+        a few hundredths of a radian of a view, asks for the next view while the last move's
+        tail still runs (a Monte-Carlo door was never confirmed: every second view was refused
+        as busy, the head never turned towards the door)."""
         waiting = (self.machine.state is TaskState.DETECT_DOOR and self.machine.phase is Phase.PLANNING
                    and self._detection_request == self.machine.request_id)
         if not waiting:
@@ -160,8 +165,9 @@ class Supervisor:
         problem = look_problem(trajectory, self.robot.arm_joints)
         if problem:
             return [act.Notice(f"look refused: {problem}")]
+        replaced: list[act.Action] = [act.EndLook()] if self._looked else []
         self._looked = True
-        return [act.Look(trajectory)]
+        return replaced + [act.Look(trajectory)]
 
     def proposal(self, kind: PlannerKind, message: Any, now: Instant) -> list[act.Action]:
         """A planner's proposal message (a Path or JointTrajectory), known by its stamp."""
