@@ -146,3 +146,18 @@ def test_a_bad_passage_crouch_is_refused(tmp_path, crouch, message):
     path.write_text(yaml.safe_dump(document))
     with pytest.raises(RobotModelError, match=message):
         load_profile(str(path))
+
+
+def test_joint_efforts_are_positive_and_finite(tmp_path):
+    """``joint_efforts`` replaces a URDF's effort limits (Atlas v4's ankles, cut in the copy
+    ../shared/data holds); a bad number is refused here, an unknown joint where the robot is
+    loaded (tests/sim_bridge/test_sim_robot.py)."""
+    assert load_profile("talos").joint_efforts == {}
+    document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
+    path = tmp_path / "robot_bad_efforts.yaml"
+    for efforts in ({"left_ankle_pitch_joint": -50.0}, {"left_ankle_pitch_joint": float("nan")},
+                    {"left_ankle_pitch_joint": 0.0}):
+        document["joint_efforts"] = efforts
+        path.write_text(yaml.safe_dump(document))
+        with pytest.raises(RobotModelError, match="joint_efforts must be positive and finite"):
+            load_profile(str(path))

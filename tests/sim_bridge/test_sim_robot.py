@@ -8,10 +8,12 @@ import xml.etree.ElementTree as ElementTree
 
 import numpy as np
 import pytest
+import yaml
 
 from door_contract.geometry import planar_pose
 from door_contract.vocabulary import Foot, Side
 from door_robot.kinematics import RobotKinematics
+from door_robot.locations import params_dir
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.world import DoorWorld, RobotMode, StanceConfig, WorldConfig
 from door_sim_bridge.world.camera import optical_offset
@@ -143,3 +145,19 @@ def test_a_profile_without_camera_axes_guesses_them(shared_data):
             explicit = invert(world.link_pose(frame)) @ world.camera.pose()
             world.robot.reset_joints({name: 0.0 for name in world.joint_positions()})
             np.testing.assert_allclose(optical_offset(world.robot, frame), explicit, atol=1e-6, err_msg=profile)
+
+
+def test_profile_joint_efforts_replace_the_urdfs_and_an_unknown_joint_is_refused(shared_data, tmp_path):
+    """Atlas v4's ankles get the efforts of the original model (360 N·m roll, 740 N·m pitch; the
+    copy in ../shared/data cut them to 45 and 92), every other joint keeps the URDF's; a profile
+    naming a joint the URDF lacks is refused before anything runs."""
+    with DoorWorld(WorldConfig(robot_profile="atlas_v4", stance=STANCE, robot_mode=RobotMode.KINEMATIC)) as world:
+        limits = world.joint_limits()
+    assert (limits["l_leg_aky"].effort, limits["r_leg_akx"].effort) == (740.0, 360.0)
+    assert limits["l_leg_kny"].effort == 890.0  # the URDF's
+    document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
+    document["joint_efforts"] = {"wing_joint": 10.0}
+    path = tmp_path / "robot_g1_wings.yaml"
+    path.write_text(yaml.safe_dump(document))
+    with pytest.raises(SimulationError, match=r"joint_efforts names joint\(s\) the URDF lacks: \['wing_joint'\]"):
+        DoorWorld(WorldConfig(robot_profile=str(path), stance=STANCE, robot_mode=RobotMode.KINEMATIC))

@@ -22,11 +22,13 @@ def straight_plan(world: DoorWorld, stride: float, steps: int) -> list[FootPlace
 
 
 def turn_plan(world: DoorWorld, turn: float, pairs: int) -> list[FootPlacement]:
-    """Turn in place about the stance centre by ``turn`` rad per pair of steps."""
+    """Turn in place about the stance centre by ``turn`` rad per pair of steps, from the right
+    sole's heading (the first step's stance foot: no step turns more than ``turn`` from the
+    sole it leaves, whatever heading error a walk before left between the feet)."""
     feet = world.foot_placements()
     cx, cy = (feet[Foot.LEFT].x + feet[Foot.RIGHT].x) / 2.0, (feet[Foot.LEFT].y + feet[Foot.RIGHT].y) / 2.0
     half = math.hypot(feet[Foot.LEFT].x - feet[Foot.RIGHT].x, feet[Foot.LEFT].y - feet[Foot.RIGHT].y) / 2.0
-    plan, yaw = [], feet[Foot.LEFT].yaw
+    plan, yaw = [], feet[Foot.RIGHT].yaw
     for index in range(2 * pairs):
         foot = Foot.LEFT if index % 2 == 0 else Foot.RIGHT
         if foot is Foot.LEFT:

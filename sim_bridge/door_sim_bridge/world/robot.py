@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 import tempfile
 from collections.abc import Iterable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -52,6 +52,15 @@ class JointLimit:
 
     def contains(self, value: float, tolerance: float = 1e-6) -> bool:
         return self.lower - tolerance <= value <= self.upper + tolerance
+
+
+def _with_efforts(limits: dict[str, JointLimit], profile: RobotProfile) -> dict[str, JointLimit]:
+    """The URDF's limits with the profile's ``joint_efforts`` in place of its efforts; a joint
+    the model lacks is refused."""
+    unknown = sorted(set(profile.joint_efforts) - set(limits))
+    if unknown:
+        raise SimulationError(f"profile {profile.name!r}: joint_efforts names joint(s) the URDF lacks: {unknown}")
+    return {name: replace(limit, effort=profile.joint_efforts.get(name, limit.effort)) for name, limit in limits.items()}
 
 
 @dataclass(frozen=True, eq=False)
@@ -85,8 +94,8 @@ class SimRobot:
         self.joint_names: tuple[str, ...] = tuple(name for name, _ in movable)
         self._indices = np.array([j for _, j in movable], dtype=int)
         self._index_of = {name: k for k, name in enumerate(self.joint_names)}
-        self.limits = {info[1].decode(): JointLimit(info[8], info[9], info[11], info[10])
-                       for info in infos if info[2] in MOVABLE_JOINT_TYPES}
+        self.limits = _with_efforts({info[1].decode(): JointLimit(info[8], info[9], info[11], info[10])
+                                     for info in infos if info[2] in MOVABLE_JOINT_TYPES}, profile)
         self._forces = np.array([max(force_scale * self.limits[n].effort, MIN_MOTOR_FORCE)
                                  for n in self.joint_names])
         dynamics = client.getDynamicsInfo(self.body, -1)

@@ -256,6 +256,7 @@ class RobotProfile:
     look_posture: dict[str, float] = field(default_factory=dict)  # joint -> rad over the walking posture, to see the door
     stance: dict[str, float] = field(default_factory=dict)  # footstep planner stand distance -> m (STANCE_FIELDS)
     push_passage_crouch: PassageCrouch | None = None  # None: every walk upright
+    joint_efforts: dict[str, float] = field(default_factory=dict)  # joint -> effort limit (N·m) replacing the URDF's
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
@@ -339,7 +340,19 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         look_posture=_posture(document, "look_posture"),
         stance=_stance(document.get("stance")),
         push_passage_crouch=_passage_crouch(document.get("push_passage_crouch")),
+        joint_efforts=_joint_efforts(document.get("joint_efforts")),
     )
+
+
+def _joint_efforts(document: Any) -> dict[str, float]:
+    """The optional ``joint_efforts`` mapping (joint → N·m, positive and finite): effort limits
+    that replace the URDF's where a copy of a model is known to have changed them (the
+    simulated motors' maximum forces; whether each joint exists is checked against the URDF
+    where the robot is loaded)."""
+    efforts = {str(name): float(value) for name, value in (document or {}).items()}
+    if not all(math.isfinite(v) and v > 0.0 for v in efforts.values()):
+        raise RobotModelError(f"joint_efforts must be positive and finite, got {efforts}")
+    return efforts
 
 
 def _passage_crouch(document: Any) -> PassageCrouch | None:
