@@ -22,6 +22,11 @@ planner's stand distances for robots whose hands reach less or further than TALO
 0.42 m beside a push door, where TALOS stands 0.50 m away), and an arm's ``grasp_axes_beside``
 turns the hand the other way up on the lever when the door runs along the robot's side (G1's
 wrist turns the lever fingers-down there, fingers-up facing the door).
+
+``joint_efforts`` (joint → N·m) replaces a URDF's effort limits where the copy of a model is
+known to have changed them: the Atlas v4 URDF in ../shared/data (roboschool's) cut the ankles
+to 45 and 92 N·m and keeps the original 360 and 740 N·m in comments beside them; with the cut
+ones the simulated Atlas could not walk.
 """
 
 from __future__ import annotations
