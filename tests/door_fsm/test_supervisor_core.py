@@ -242,3 +242,19 @@ def test_a_push_door_is_walked_through_crouched_when_its_lever_meets_the_pelvis(
     upright.door.approved = ESTIMATE
     assert upright.walk_crouch(through) == 0.0  # a profile without a crouch
     assert SupervisedRobot.of(load_profile("talos")).push_passage_crouch == load_profile("talos").push_passage_crouch
+
+
+def test_a_robot_with_an_opening_crouch_walks_every_walk_that_low() -> None:
+    """A profile's ``opening_crouch`` (Atlas v4's 0.15 m) lowers the walk to the door, and every
+    walk after it, whether or not an estimate is known; a deeper passage crouch still wins."""
+    low = SupervisedRobot("atlas_v4", 1.5, HANDS_ONLY, PassageCrouch((0.90, 1.00), 0.12), opening_crouch=0.10)
+    supervisor = _started(low)
+    stand = _walk_request(supervisor)
+    assert supervisor.walk_crouch(stand) == pytest.approx(0.10)
+    supervisor.door.approved = None
+    assert supervisor.walk_crouch(stand) == pytest.approx(0.10)  # no estimate
+    supervisor.door.approved = ESTIMATE  # push, the lever at 0.95 m: in the band
+    assert supervisor.walk_crouch(act.RequestFootsteps(stand.request_id + 1, WalkGoal.THROUGH)) == pytest.approx(0.12)
+    supervisor.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "handle_position": (1.2, -0.35, 1.05)})
+    assert supervisor.walk_crouch(act.RequestFootsteps(stand.request_id + 1, WalkGoal.THROUGH)) == pytest.approx(0.10)
+    assert SupervisedRobot.of(load_profile("talos")).opening_crouch == 0.0

@@ -161,3 +161,24 @@ def test_joint_efforts_are_positive_and_finite(tmp_path):
         path.write_text(yaml.safe_dump(document))
         with pytest.raises(RobotModelError, match="joint_efforts must be positive and finite"):
             load_profile(str(path))
+
+
+def test_opening_crouch_lowers_every_walk_and_is_checked(tmp_path, shared_data):
+    """A tall robot walks to the door, opens it and passes it ``opening_crouch`` lower (Atlas v4:
+    0.15 m); a push passage's crouch takes it lower still where that is deeper; TALOS walks
+    upright but for its passage crouch."""
+    assert load_profile("atlas_v4").opening_crouch == 0.15
+    assert load_profile("talos").opening_crouch == 0.0
+    band = PassageCrouch((1.0, 1.04), 0.08)
+    for goal in WalkGoal:
+        assert walk_crouch(None, goal, DoorOpening.PULL, None, 0.15) == 0.15
+    assert walk_crouch(band, WalkGoal.STAND, DoorOpening.PUSH, (1.02, 0.95), 0.05) == 0.05
+    assert walk_crouch(band, WalkGoal.THROUGH, DoorOpening.PUSH, (1.02, 0.95), 0.05) == 0.08
+    assert walk_crouch(band, WalkGoal.THROUGH, DoorOpening.PUSH, (1.02, 0.95), 0.12) == 0.12
+    document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
+    path = tmp_path / "robot_bad_crouch.yaml"
+    for crouch in (-0.05, 0.2, float("nan")):
+        document["opening_crouch"] = crouch
+        path.write_text(yaml.safe_dump(document))
+        with pytest.raises(RobotModelError, match=r"opening_crouch must be within \[0, 0.15\] m"):
+            load_profile(str(path))

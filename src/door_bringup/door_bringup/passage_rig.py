@@ -338,7 +338,7 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
     if not result.succeeded or result.plan is None:
         return "planning failed", f"{result.outcome.value}: {result.reason}"
     crouch = walk_crouch(world.profile.push_passage_crouch, goal, world.config.door.opening,
-                         (estimate.handle_position[2], estimate.width))  # as the FSM sets it
+                         (estimate.handle_position[2], estimate.width), world.profile.opening_crouch)  # as the FSM
     walked = run_recording(world, FootstepExecution(world, contract_footsteps(problem.start, result.plan), crouch),
                            peaks, trace)
     if walked is None:

@@ -27,6 +27,12 @@ wrist turns the lever fingers-down there, fingers-up facing the door).
 known to have changed them: the Atlas v4 URDF in ../shared/data (roboschool's) cut the ankles
 to 45 and 92 N·m and keeps the original 360 and 740 N·m in comments beside them; with the cut
 ones the simulated Atlas could not walk.
+
+``opening_crouch`` (m) lowers a tall robot for the whole task: it walks to the door that far
+below its standing height (the walker's crouch), stands so while its arm opens the door and
+walks through so (a push passage's crouch may take it lower still). Atlas v4's shoulders are
+so high above a 0.91 m lever that upright its back bent forward into the leaf (4.7 kN); 0.15 m
+lower the arm reaches the lever without it.
 """
 
 from __future__ import annotations
@@ -235,13 +241,14 @@ class PassageCrouch:
 
 
 def walk_crouch(crouch: PassageCrouch | None, goal: WalkGoal, opening: DoorOpening,
-                door: tuple[float, float] | None) -> float:
-    """How far below its standing height the pelvis walks to ``goal`` (m): ``crouch``'s
-    (a profile's ``push_passage_crouch``) for the ``door``'s (lever height, width) in m; 0
-    without one or when the door is not known."""
+                door: tuple[float, float] | None, opening_crouch: float = 0.0) -> float:
+    """How far below its standing height the pelvis walks to ``goal`` (m): at least
+    ``opening_crouch`` (a profile's: the robot walks to the door, opens it and passes it that
+    low), lower where ``crouch`` (a profile's ``push_passage_crouch``) asks for it, for the
+    ``door``'s (lever height, width) in m; ``opening_crouch`` alone when the door is not known."""
     if crouch is None or door is None:
-        return 0.0
-    return crouch.for_walk(goal, opening, *door)
+        return opening_crouch
+    return max(opening_crouch, crouch.for_walk(goal, opening, *door))
 
 
 @dataclass(frozen=True)
@@ -262,6 +269,11 @@ class RobotProfile:
     stance: dict[str, float] = field(default_factory=dict)  # footstep planner stand distance -> m (STANCE_FIELDS)
     push_passage_crouch: PassageCrouch | None = None  # None: every walk upright
     joint_efforts: dict[str, float] = field(default_factory=dict)  # joint -> effort limit (N·m) replacing the URDF's
+    opening_crouch: float = 0.0  # m below the standing height it walks to the door, opens it and passes it
+
+    def __post_init__(self) -> None:
+        if not (isinstance(self.opening_crouch, float) and 0.0 <= self.opening_crouch <= MAX_CROUCH):
+            raise RobotModelError(f"opening_crouch must be within [0, {MAX_CROUCH}] m, got {self.opening_crouch!r}")
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
@@ -346,6 +358,7 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         stance=_stance(document.get("stance")),
         push_passage_crouch=_passage_crouch(document.get("push_passage_crouch")),
         joint_efforts=_joint_efforts(document.get("joint_efforts")),
+        opening_crouch=float(document.get("opening_crouch", 0.0)),
     )
 
 
