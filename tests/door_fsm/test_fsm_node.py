@@ -4,9 +4,11 @@ import subprocess
 
 import pytest
 import rclpy
+from builtin_interfaces.msg import Duration
 from diagnostic_msgs.msg import DiagnosticArray
 from ros_helpers import executor_for, node_process, spin_until, start_node, stop_node
 from std_msgs.msg import String
+from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
 from door_bringup.graph_spec import GRAPH
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
@@ -23,8 +25,9 @@ ESTIMATE = DoorEstimate(0.0, "odom", (1.2, -0.35, 0.95), (-1.0, 0.0, 0.0), Hinge
 class Peer:
     """Stands in for the detector (and is a 'required node'); records what the FSM says."""
 
-    def __init__(self, context):
+    def __init__(self, context, detects=True):
         self.node = rclpy.create_node("fsm_test_peer", context=context)
+        self.detects = detects  # publishes the estimate as DETECT_DOOR starts
         self.executor = executor_for(self.node, context)
         self.states, self.requests, self.failures = [], [], []
         self.estimate_pub = create_contract_publisher(self.node, Topics.DOOR_ESTIMATE)
@@ -55,7 +58,7 @@ class Peer:
 
     def _on_state(self, msg):
         self.states.append(msg.data)
-        if msg.data == "DETECT_DOOR":
+        if msg.data == "DETECT_DOOR" and self.detects:
             self.estimate_pub.publish(String(data=encode(ESTIMATE)))
 
     def say(self, word):
@@ -66,8 +69,8 @@ class Peer:
 
 
 @pytest.fixture
-def supervisor(workspace, rclpy_context, tmp_path):
-    peer = Peer(rclpy_context)
+def supervisor(workspace, rclpy_context, tmp_path, request):
+    peer = Peer(rclpy_context, detects=getattr(request, "param", True))
     peer.log_path = tmp_path / "fsm.log"
     with node_process(workspace, "fsm_supervisor", peer.log_path, "approval_timeout:=4.0", "start_delay:=0.5",
                       "required_nodes:=['fsm_test_peer']", timeout_s=20):
@@ -95,6 +98,26 @@ def test_each_walk_request_sets_the_walks_crouch_first(supervisor):
     assert supervisor.wait(lambda: ("request", WalkGoal.STAND) in supervisor.walk_messages), supervisor.walk_messages
     assert supervisor.wait(lambda: ("crouch", 0.0) in supervisor.walk_messages), supervisor.walk_messages
     assert [kind for kind, _ in supervisor.walk_messages].count("crouch") == 1  # one walk, one crouch
+
+
+@pytest.mark.parametrize("supervisor", [False], indirect=True)  # the test looks, then detects
+def test_each_look_of_the_head_search_replaces_the_last(supervisor):
+    """The detector's looks reach the robot while DETECT_DOOR waits, each after a stop of the one
+    before (the robot refuses a trajectory while another runs: a Monte-Carlo door was never
+    confirmed, every look towards it refused as busy); the confirming estimate stops the last."""
+    arm = []
+    create_contract_subscription(supervisor.node, Topics.ARM_TRAJECTORY,
+                                 lambda m: arm.append([p.positions[0] for p in m.points]))
+    look_pub = create_contract_publisher(supervisor.node, Topics.HEAD_LOOK)
+    assert supervisor.wait(lambda: "DETECT_DOOR" in supervisor.states), supervisor.log_path.read_text()
+    for pan in (0.3, -0.3):
+        look = JointTrajectory(joint_names=["head_2_joint"],
+                               points=[JointTrajectoryPoint(positions=[pan], time_from_start=Duration(sec=1))])
+        look_pub.publish(look)
+        assert supervisor.wait(lambda sent=[pan]: sent in arm), (arm, supervisor.log_path.read_text())
+    supervisor.estimate_pub.publish(String(data=encode(ESTIMATE)))
+    assert supervisor.wait(lambda: len(arm) == 4), arm
+    assert arm == [[0.3], [], [-0.3], []]  # a stop (no points) before the second look and after it
 
 
 def test_reject_pause_resume_abort_and_unknown_command(supervisor):
