@@ -45,13 +45,13 @@ from door_contract.topics import Services, Topics
 from door_contract.vocabulary import Side
 from door_robot.errors import RobotModelError
 from door_robot.meshes import MeshUris
+from door_robot.profile import crouch_problem
 from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import Execution, FootstepExecution, TrajectoryExecution
 from door_sim_bridge.parameters import BRIDGE_PARAMETERS, NODE_NAME
 from door_sim_bridge.sensor_publication import SensorPublication
 from door_sim_bridge.simulation_loop import STEPS_PER_TICK, LoopReport, PublicationRates, SimulationLoop, Stream
-from door_sim_bridge.walking.controller import crouch_problem
 from door_sim_bridge.world import DoorWorld
 from door_sim_bridge.world_parameters import world_config
 

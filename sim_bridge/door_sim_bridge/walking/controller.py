@@ -34,7 +34,7 @@ import placo
 
 from door_contract.converters.footsteps import FootPlacement
 from door_contract.vocabulary import Foot
-from door_robot.profile import MAX_CROUCH, RobotProfile
+from door_robot.profile import RobotProfile, crouch_problem
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.walking.dcm import CentreOfMassMotion, DcmFeedback, PatternDeparture
 from door_sim_bridge.walking.gait import GaitOptions, footstep_sequence, placo_parameters, smooth_blend
@@ -42,7 +42,7 @@ from door_sim_bridge.walking.model import PLACO_TRUNK_FRAME, joint_split, load_p
 from door_sim_bridge.walking.stabilizer import ContactWrench, Stabilizer, StabilizerOptions
 from door_sim_bridge.walking.support import into_polygon, support_polygon
 
-__all__ = ["START_INSET", "BalanceMode", "HeightChange", "Measurement", "WalkingController", "crouch_problem",
+__all__ = ["START_INSET", "BalanceMode", "HeightChange", "Measurement", "WalkingController",
            "level_frame", "mean_yaw", "offset_in_stance", "stance_frame", "supports_from", "yaw_rotation"]
 
 START_INSET = 0.005
@@ -52,15 +52,6 @@ soles' edges), so that placo's QP starts strictly feasible."""
 
 HEIGHT_PROBE = 0.02  # m the trunk is lowered on the model to measure how the CoM follows it
 HEIGHT_PROBE_TICKS = 200  # IK ticks for it (velocity-limited: 0.8 s of motion at the control rate)
-
-
-def crouch_problem(crouch: object) -> str:
-    """Why ``crouch`` (m) cannot be walked, or "": a finite number within [0, MAX_CROUCH]."""
-    if not isinstance(crouch, (int, float)) or isinstance(crouch, bool) or not math.isfinite(crouch):
-        return f"crouch {crouch!r} is not a finite number of metres"
-    if not 0.0 <= crouch <= MAX_CROUCH:
-        return f"crouch {crouch:.3f} m is outside [0, {MAX_CROUCH}] m"
-    return ""
 
 
 @dataclass(frozen=True)

@@ -49,7 +49,7 @@ from door_contract.vocabulary import DoorOpening, Side, WalkGoal
 from door_robot.errors import RobotModelError
 from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
 
-__all__ = ["MAX_CROUCH", "STANCE_FIELDS", "ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "PassageCrouch", "RobotProfile", "WalkingLimits", "load_profile",
+__all__ = ["MAX_CROUCH", "STANCE_FIELDS", "crouch_problem", "ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "PassageCrouch", "RobotProfile", "WalkingLimits", "load_profile",
            "walk_crouch",
            "profile_path", "resolve_urdf"]
 
@@ -200,6 +200,15 @@ MAX_CROUCH = 0.15
 the walker takes (TALOS's knees bend 0.34 rad more for 0.10 m)."""
 
 
+def crouch_problem(crouch: object) -> str:
+    """Why ``crouch`` (m) cannot be walked, or "": a finite number within [0, MAX_CROUCH]."""
+    if not isinstance(crouch, (int, float)) or isinstance(crouch, bool) or not math.isfinite(crouch):
+        return f"crouch {crouch!r} is not a finite number of metres"
+    if not 0.0 <= crouch <= MAX_CROUCH:
+        return f"crouch {crouch:.3f} m is outside [0, {MAX_CROUCH}] m"
+    return ""
+
+
 @dataclass(frozen=True)
 class PassageCrouch:
     """How low the robot walks through a push door whose lever meets its pelvis.
@@ -272,8 +281,8 @@ class RobotProfile:
     opening_crouch: float = 0.0  # m below the standing height it walks to the door, opens it and passes it
 
     def __post_init__(self) -> None:
-        if not (isinstance(self.opening_crouch, float) and 0.0 <= self.opening_crouch <= MAX_CROUCH):
-            raise RobotModelError(f"opening_crouch must be within [0, {MAX_CROUCH}] m, got {self.opening_crouch!r}")
+        if problem := crouch_problem(self.opening_crouch):
+            raise RobotModelError(f"opening_crouch must be within [0, {MAX_CROUCH}] m: {problem}")
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
