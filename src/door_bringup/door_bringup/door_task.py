@@ -52,7 +52,7 @@ from door_contract.payloads import TaskReport, decode, encode_document
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Topics
 from door_contract.vocabulary import TaskEnd
-from door_fsm.operator_commands import request_id_of
+from door_fsm.answer_retry import AnswerRetry
 
 __all__ = ["ScriptedOperator", "TaskOptions", "add_camera_arguments", "main", "parse_options", "run_task"]
 
@@ -127,8 +127,9 @@ def _yaml_value(value: object) -> str:
 
 
 class ScriptedOperator(Node):
-    """The operator of the main job: approves every request and collects the TaskReport
-    and where the robot's base ended (odom, m)."""
+    """The operator of the main job: approves every request (again until the FSM takes it:
+    :mod:`door_fsm.answer_retry`) and collects the TaskReport and where the robot's base ended
+    (odom, m)."""
 
     def __init__(self, approve: bool) -> None:
         super().__init__("door_task_operator")
@@ -141,6 +142,8 @@ class ScriptedOperator(Node):
         create_contract_subscription(self, Topics.ODOM, self._on_odom)
         create_contract_subscription(self, Topics.DIAGNOSTICS, self._on_diagnostics)
         self.command_pub = create_contract_publisher(self, Topics.OPERATOR)
+        self.answers = AnswerRetry()  # an answer lost before DDS matched the FSM is sent again
+        self.create_timer(0.5, self._resend)
         self.progress = ProgressMonitor(self)
         create_contract_subscription(self, Topics.APPROVAL_REQUEST, self._on_request)
         create_contract_subscription(self, Topics.TASK_STATE, self._on_state)
@@ -149,10 +152,16 @@ class ScriptedOperator(Node):
     def _on_request(self, msg: String) -> None:
         if msg.data:
             self.progress.say(f"  [approval request] {msg.data}")
-            request_id = request_id_of(msg.data)
-            if self.approve and request_id is not None:
-                self.command_pub.publish(String(data=f"approve {request_id}"))
-                self.progress.say(f"  [operator] approve {request_id}")
+        if self.approve:
+            self._answer(self.answers.on_request(msg.data, time.monotonic()))
+
+    def _resend(self) -> None:
+        self._answer(self.answers.due(time.monotonic()), again=True)
+
+    def _answer(self, request_id: int | None, again: bool = False) -> None:
+        if request_id is not None:
+            self.command_pub.publish(String(data=f"approve {request_id}"))
+            self.progress.say(f"  [operator] approve {request_id}{' (again: not taken yet)' if again else ''}")
 
     def _on_state(self, msg: String) -> None:
         if not self.states or self.states[-1] != msg.data:

@@ -6,7 +6,7 @@ you type on ``/door_task/operator`` — the same topic and message as ``ros2 top
 ``approve 7``, ``reject 7``, ``repeat 7``; a bare ``approve``/``reject``/``repeat`` here answers
 the request shown last. ``pause``, ``stop``, ``resume``, ``abort``, ``manual`` need no id.
 ``--approve-all`` answers every approval request itself (scripted operator for
-demonstrations and tests).
+demonstrations and tests), again every 2 s until the FSM takes the answer.
 """
 
 from __future__ import annotations
@@ -14,12 +14,14 @@ from __future__ import annotations
 import argparse
 import sys
 import threading
+import time
 
 from rclpy.node import Node
 from std_msgs.msg import String
 
 from door_contract.node_support import create_contract_publisher, create_contract_subscription, run_node
 from door_contract.topics import Topics
+from door_fsm.answer_retry import AnswerRetry
 from door_fsm.operator_commands import (
     OperatorCommand,
     OperatorWord,
@@ -41,18 +43,27 @@ class OperatorConsole(Node):
         create_contract_subscription(self, Topics.APPROVAL_REQUEST, self._on_request)
         self.state = ""
         self.shown_request: int | None = None  # the id of the approval request shown last
+        self.answers = AnswerRetry()  # --approve-all: an answer lost before DDS matched the FSM is sent again
+        if approve_all:
+            self.create_timer(0.5, self._resend)
 
     def _on_state(self, msg: String) -> None:
         self.state = msg.data
         print(f"[state] {msg.data}", flush=True)
 
     def _on_request(self, msg: String) -> None:
-        if not msg.data:
-            return
-        self.shown_request = request_id_of(msg.data)
-        print(f"[approval request] {msg.data}", flush=True)
-        if self.approve_all and self.shown_request is not None:
-            self.send(OperatorWord(OperatorCommand.APPROVE, self.shown_request))
+        if msg.data:
+            self.shown_request = request_id_of(msg.data)
+            print(f"[approval request] {msg.data}", flush=True)
+        if self.approve_all:
+            self._approve(self.answers.on_request(msg.data, time.monotonic()))
+
+    def _resend(self) -> None:
+        self._approve(self.answers.due(time.monotonic()))
+
+    def _approve(self, request_id: int | None) -> None:
+        if request_id is not None:
+            self.send(OperatorWord(OperatorCommand.APPROVE, request_id))
 
     def send(self, word: OperatorWord) -> None:
         self.command_pub.publish(String(data=str(word)))
