@@ -31,6 +31,7 @@ from pathlib import Path
 import rclpy
 from diagnostic_msgs.msg import DiagnosticArray
 from nav_msgs.msg import Odometry
+from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from std_msgs.msg import String
 
@@ -44,6 +45,7 @@ from door_bringup.progress_monitor import ProgressMonitor
 from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.run_plots import plot_run
 from door_bringup.table_one import format_table, phase_rows, state_attempts
+from door_bringup.teardown import TEARDOWN_S, finishes_within
 from door_bringup.workspace import Workspace, repository_root
 from door_contract.converters.diagnostics import status_values
 from door_contract.network import keep_discovery_local
@@ -131,8 +133,9 @@ class ScriptedOperator(Node):
     :mod:`door_fsm.answer_retry`) and collects the TaskReport and where the robot's base ended
     (odom, m)."""
 
-    def __init__(self, approve: bool) -> None:
-        super().__init__("door_task_operator")
+    def __init__(self, approve: bool, context: rclpy.Context | None = None) -> None:
+        super().__init__("door_task_operator", context=context)
+        self._spinner: SingleThreadedExecutor | None = None
         self.approve = approve
         self.report: TaskReport | None = None
         self.states: list[str] = []
@@ -148,6 +151,21 @@ class ScriptedOperator(Node):
         create_contract_subscription(self, Topics.APPROVAL_REQUEST, self._on_request)
         create_contract_subscription(self, Topics.TASK_STATE, self._on_state)
         create_contract_subscription(self, Topics.TASK_REPORT, self._on_report)
+
+    def spin_once(self, timeout_sec: float) -> None:
+        """Take this node's next callback, on an executor of its own context's."""
+        if self._spinner is None:
+            self._spinner = SingleThreadedExecutor(context=self.context)
+            self._spinner.add_node(self)
+        self._spinner.spin_once(timeout_sec=timeout_sec)
+
+    def release(self) -> None:
+        """Destroy the node, its executor and its context."""
+        if self._spinner is not None:
+            self._spinner.shutdown()
+        context = self.context
+        self.destroy_node()
+        rclpy.try_shutdown(context=context)
 
     def _on_request(self, msg: String) -> None:
         if msg.data:
@@ -193,8 +211,9 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
     recorder = ProcessSupervisor(workspace, run_dir / "logs")  # stopped after the graph: the bag ends with DONE
     overrides = options.node_overrides()
     keep_discovery_local()  # the scripted operator's participant
-    rclpy.init()
-    operator = ScriptedOperator(options.operator == "auto")
+    context = rclpy.Context()  # the run's own: a teardown left hanging does not hold the next run's
+    rclpy.init(context=context)
+    operator = ScriptedOperator(options.operator == "auto", context)
     started = time.monotonic()
     try:
         if options.record:
@@ -213,9 +232,13 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
         with signals_deferred():  # a second stop waits: the recorder is stopped too
             operator.progress.printer.interrupt()
             codes = {**supervisor.stop(), **recorder.stop()}
-        operator.destroy_node()
-        rclpy.try_shutdown()
+        released = finishes_within(operator.release, TEARDOWN_S)
+        if not released:
+            print(f"warning: the operator node's teardown did not finish within {TEARDOWN_S:g} s "
+                  "(a DDS hang destroying a publisher); left behind", flush=True)
     report["wall_time_s"] = round(time.monotonic() - started, 2)
+    if not released:
+        report["teardown_hung"] = True
     report["final_base_xy"] = operator.base_xy
     report["exit_codes"] = codes
     return report
@@ -235,7 +258,7 @@ def _wait_until_recorded(operator: ScriptedOperator, terminal_state: String) -> 
             print(f"warning: the bag may lack the terminal state {terminal_state.data} "
                   f"(the recorder did not confirm it within {RECORDER_CONFIRM_S:g} s)", flush=True)
             return
-        rclpy.spin_once(operator, timeout_sec=0.1)
+        operator.spin_once(timeout_sec=0.1)
 
 
 def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, timeout_s: float) -> dict:
@@ -245,7 +268,7 @@ def _wait_for_report(operator: ScriptedOperator, supervisor: ProcessSupervisor, 
     the net for a simulation that no longer advances."""
     started, wall_limit = time.monotonic(), WALL_SAFETY * timeout_s
     while operator.report is None:
-        rclpy.spin_once(operator, timeout_sec=0.1)
+        operator.spin_once(timeout_sec=0.1)
         operator.progress.tick()
         dead = [c.launch.node_name for c in supervisor.exited()]
         if dead:
