@@ -11,6 +11,7 @@ from door_bringup.monte_carlo import (
     TRIAL_FILE,
     ResumeError,
     _run_folder,
+    door_classes_line,
     draw_trials,
     falls_line,
     main,
@@ -64,6 +65,24 @@ def test_summary_counts_each_opening_and_names_the_failures():
     assert "push doors (paper: 91 % overall)" in text and "pull doors (paper: 82 % overall)" in text
     assert "All doors: 1/2 (50 %)" in text
     assert "- trial 1: WALK_TO_DOOR: planning failed" in text
+
+
+def _of_class(opening: str, hinge: str, done: bool) -> dict:
+    report = _report(opening, done, 1.0, 0.5)
+    report["options"]["hinge"] = hinge
+    return report
+
+
+def test_each_door_class_counts_alike_in_the_class_balanced_rate():
+    """9 of 10 doors DONE pooled, but the class with one door failed it: 3 classes at 100 %,
+    one at 0 % → 75 % class-balanced."""
+    reports = ([_of_class("push", "right", True)] * 3 + [_of_class("pull", "left", True)] * 3
+               + [_of_class("pull", "right", True)] * 3 + [_of_class("push", "left", False)])
+    line = door_classes_line(reports)
+    assert line == ("By door class: pull left 3/3, pull right 3/3, push left 0/1, push right 3/3; "
+                    "class-balanced 75 % (each of the 4 classes weighted alike)")
+    assert line in summary(reports)
+    assert door_classes_line([]) == "By door class: no trials"
 
 
 def _fell_in(state: str) -> dict:
