@@ -1,4 +1,5 @@
-"""The main job's operator answers again until the FSM takes the answer: over real DDS, an FSM
+"""The automatic operators (the main job's, ``operator_console --approve-all``) answer again until
+the FSM takes the answer: over real DDS, an FSM
 whose subscription to /door_task/operator appears only after the first answer went out (what DDS
 matching did on a fresh clone in stop 38: the approval was lost, the task failed after 300 s)
 still receives ``approve N``, and a cleared request stops the repeats."""
@@ -12,15 +13,18 @@ from std_msgs.msg import String
 from door_bringup.door_task import ScriptedOperator
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.topics import Topics
+from door_fsm.operator_console import OperatorConsole
 
 pytestmark = pytest.mark.ros
 
 REQUEST = "DETECT_DOOR #3: approve detection 'door'? width=0.91 | reply 'approve 3', 'reject 3' or 'repeat 3'"
 
 
-def test_an_answer_lost_before_the_fsm_subscribed_is_sent_again():
+@pytest.mark.parametrize("make_operator", [lambda: ScriptedOperator(approve=True),
+                                           lambda: OperatorConsole(approve_all=True)], ids=["main_job", "console"])
+def test_an_answer_lost_before_the_fsm_subscribed_is_sent_again(make_operator):
     rclpy.init()
-    operator = ScriptedOperator(approve=True)
+    operator = make_operator()
     fsm = rclpy.create_node("fake_fsm_supervisor")
     executor = SingleThreadedExecutor()
     executor.add_node(operator)
