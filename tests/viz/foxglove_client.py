@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import struct
 import time
+from contextlib import ExitStack
 
 from websockets.exceptions import ConnectionClosed
 from websockets.sync.client import connect
@@ -21,7 +22,9 @@ SUBPROTOCOL = "foxglove.sdk.v1"
 
 class FoxgloveClient:
     def __init__(self, url: str, timeout_s: float = 30.0) -> None:
-        self.socket = connect(url, subprotocols=[SUBPROTOCOL], open_timeout=timeout_s, max_size=None)
+        self._open = ExitStack()  # websockets ≥ 17.1 wants its connection entered as a context manager
+        self.socket = self._open.enter_context(connect(url, subprotocols=[SUBPROTOCOL], open_timeout=timeout_s,
+                                                       max_size=None))
         self.server_info: dict = {}
         self.channels: dict[str, dict] = {}  # topic -> advertised channel
         self.messages: dict[int, list[bytes]] = {}  # subscription id -> payloads
@@ -29,7 +32,7 @@ class FoxgloveClient:
         self.statuses: list[dict] = []
 
     def close(self) -> None:
-        self.socket.close()
+        self._open.close()
 
     def pump(self, condition, timeout_s: float) -> bool:
         """Read frames until ``condition()`` holds or the deadline passes."""
