@@ -53,3 +53,8 @@ def test_text_without_a_request_id_is_not_answered():
 def test_a_resend_period_must_be_positive():
     with pytest.raises(ValueError, match="resend_after_s"):
         RetryOptions(resend_after_s=0.0)
+
+
+def test_a_check_period_must_be_positive():
+    with pytest.raises(ValueError, match="check_period_s"):
+        RetryOptions(check_period_s=-1.0)

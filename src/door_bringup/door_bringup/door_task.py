@@ -146,7 +146,7 @@ class ScriptedOperator(Node):
         create_contract_subscription(self, Topics.DIAGNOSTICS, self._on_diagnostics)
         self.command_pub = create_contract_publisher(self, Topics.OPERATOR)
         self.answers = AnswerRetry()  # an answer lost before DDS matched the FSM is sent again
-        self.create_timer(0.5, self._resend)
+        self.create_timer(self.answers.options.check_period_s, self._resend)
         self.progress = ProgressMonitor(self)
         create_contract_subscription(self, Topics.APPROVAL_REQUEST, self._on_request)
         create_contract_subscription(self, Topics.TASK_STATE, self._on_state)

@@ -28,10 +28,14 @@ class RetryOptions:
     """s (wall clock) without the request being cleared after which the answer is sent again;
     well above DDS delivery on a loaded machine (~10 ms), well below the FSM's approval
     timeout (300 s)."""
+    check_period_s: float = 0.5
+    """s between a node's calls of :meth:`AnswerRetry.due` (its timer): a repeat goes out at most
+    this late."""
 
     def __post_init__(self) -> None:
-        if not self.resend_after_s > 0.0:
-            raise ValueError(f"resend_after_s must be > 0 s, got {self.resend_after_s}")
+        for name in ("resend_after_s", "check_period_s"):
+            if not getattr(self, name) > 0.0:
+                raise ValueError(f"{name} must be > 0 s, got {getattr(self, name)}")
 
 
 class AnswerRetry:

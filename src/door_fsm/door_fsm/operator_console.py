@@ -45,7 +45,7 @@ class OperatorConsole(Node):
         self.shown_request: int | None = None  # the id of the approval request shown last
         self.answers = AnswerRetry()  # --approve-all: an answer lost before DDS matched the FSM is sent again
         if approve_all:
-            self.create_timer(0.5, self._resend)
+            self.create_timer(self.answers.options.check_period_s, self._resend)
 
     def _on_state(self, msg: String) -> None:
         self.state = msg.data
