@@ -30,7 +30,7 @@ def _report(opening: str, done: bool, detection_s: float, planning_s: float) -> 
                  "moving_s": 0.0, "waiting_s": 0.0, "reason": ""},
                 {"state": "WALK_TO_DOOR", "attempt": 1, "outcome": "succeeded" if done else "failed",
                  "planning_s": planning_s, "moving_s": 5.0, "waiting_s": 0.0, "reason": ""}]
-    return {"options": {"opening": opening}, "final_state": "DONE" if done else "FAILED",
+    return {"options": {"opening": opening, "hinge": "left"}, "final_state": "DONE" if done else "FAILED",
             "failure_reason": "" if done else "WALK_TO_DOOR: planning failed", "attempts": attempts}
 
 

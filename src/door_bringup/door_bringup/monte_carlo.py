@@ -256,7 +256,7 @@ def door_classes_line(reports: list[dict]) -> str:
     classes: dict[tuple[str, str], list[bool]] = {}
     for report in reports:
         options = report["options"]
-        key = (str(options["opening"]), str(options.get("hinge", "left")))
+        key = (str(options["opening"]), str(options["hinge"]))
         classes.setdefault(key, []).append(report["final_state"] == TaskEnd.DONE)
     if not classes:
         return "By door class: no trials"
