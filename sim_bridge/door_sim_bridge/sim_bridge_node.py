@@ -43,9 +43,9 @@ from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatu
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Services, Topics
 from door_contract.vocabulary import Side
+from door_robot.crouch import crouch_problem
 from door_robot.errors import RobotModelError
 from door_robot.meshes import MeshUris
-from door_robot.profile import crouch_problem
 from door_sim_bridge.deadman import DeadMan
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import Execution, FootstepExecution, TrajectoryExecution

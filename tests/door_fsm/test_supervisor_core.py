@@ -33,7 +33,8 @@ from door_fsm.graph_watch import GraphWatch
 from door_fsm.machine import MachineOptions
 from door_fsm.records import Instant
 from door_fsm.supervisor import GRASP_SERVICES, SupervisedRobot, Supervisor
-from door_robot.profile import PassageCrouch, load_profile
+from door_robot.crouch import CrouchRules, LowLeverCrouch, PassageCrouch
+from door_robot.profile import load_profile
 
 HANDS_ONLY = ((Side.LEFT, frozenset()), (Side.RIGHT, frozenset()))
 """Both hands, their chains unnamed: what these tests need of a robot."""
@@ -225,7 +226,8 @@ def test_the_report_waits_for_a_terminal_state_and_names_how_the_task_ended() ->
 def test_a_push_door_is_walked_through_crouched_when_its_lever_meets_the_pelvis() -> None:
     """The walk's crouch (door_robot.profile.PassageCrouch) comes from the approved estimate's
     lever height: through a push door with the lever in the band, and only then."""
-    crouching = SupervisedRobot("talos", 1.5, HANDS_ONLY, PassageCrouch((0.90, 1.00), 0.06, min_door_width=0.87))
+    crouching = SupervisedRobot("talos", 1.5, HANDS_ONLY,
+                                CrouchRules(push_passage=PassageCrouch((0.90, 1.00), 0.06, min_door_width=0.87)))
     push = _started(crouching)
     stand = _walk_request(push)
     push.door.approved = ESTIMATE  # the lever at 0.95 m
@@ -241,13 +243,13 @@ def test_a_push_door_is_walked_through_crouched_when_its_lever_meets_the_pelvis(
     upright = _started(SupervisedRobot("g1", 0.8, HANDS_ONLY))
     upright.door.approved = ESTIMATE
     assert upright.walk_crouch(through) == 0.0  # a profile without a crouch
-    assert SupervisedRobot.of(load_profile("talos")).push_passage_crouch == load_profile("talos").push_passage_crouch
+    assert SupervisedRobot.of(load_profile("talos")).crouch == load_profile("talos").crouch
 
 
 def test_a_robot_with_an_opening_crouch_walks_every_walk_that_low() -> None:
     """A profile's ``opening_crouch`` (Atlas v4's 0.15 m) lowers the walk to the door, and every
     walk after it, whether or not an estimate is known; a deeper passage crouch still wins."""
-    low = SupervisedRobot("atlas_v4", 1.5, HANDS_ONLY, PassageCrouch((0.90, 1.00), 0.12), opening_crouch=0.10)
+    low = SupervisedRobot("atlas_v4", 1.5, HANDS_ONLY, CrouchRules(0.10, PassageCrouch((0.90, 1.00), 0.12)))
     supervisor = _started(low)
     stand = _walk_request(supervisor)
     assert supervisor.walk_crouch(stand) == pytest.approx(0.10)
@@ -257,4 +259,16 @@ def test_a_robot_with_an_opening_crouch_walks_every_walk_that_low() -> None:
     assert supervisor.walk_crouch(act.RequestFootsteps(stand.request_id + 1, WalkGoal.THROUGH)) == pytest.approx(0.12)
     supervisor.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "handle_position": (1.2, -0.35, 1.05)})
     assert supervisor.walk_crouch(act.RequestFootsteps(stand.request_id + 1, WalkGoal.THROUGH)) == pytest.approx(0.10)
-    assert SupervisedRobot.of(load_profile("talos")).opening_crouch == 0.0
+    assert SupervisedRobot.of(load_profile("talos")).crouch.opening == 0.0
+
+
+def test_the_walk_to_a_door_with_a_low_lever_is_crouched() -> None:
+    """A profile's ``low_lever_crouch`` lowers the walk to the door by how far the approved
+    estimate's lever is below the reach height; the passage's walks are upright."""
+    supervisor = _started(SupervisedRobot("talos", 1.5, HANDS_ONLY, CrouchRules(low_lever=LowLeverCrouch(0.95, 0.10))))
+    stand = _walk_request(supervisor)
+    supervisor.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "handle_position": (1.2, -0.35, 0.87)})
+    assert supervisor.walk_crouch(stand) == pytest.approx(0.08)
+    assert supervisor.walk_crouch(act.RequestFootsteps(stand.request_id + 1, WalkGoal.THROUGH)) == 0.0
+    supervisor.door.approved = ESTIMATE  # the lever at 0.95 m
+    assert supervisor.walk_crouch(stand) == 0.0

@@ -5,9 +5,10 @@ import pytest
 import yaml
 
 from door_contract.vocabulary import DoorOpening, WalkGoal
+from door_robot.crouch import CrouchRules, LowLeverCrouch, PassageCrouch
 from door_robot.errors import RobotModelError
 from door_robot.locations import params_dir
-from door_robot.profile import CameraAxes, PassageCrouch, load_profile, walk_crouch
+from door_robot.profile import CameraAxes, load_profile
 
 
 def _profile_with_axes(tmp_path, axes) -> str:
@@ -122,9 +123,9 @@ def test_a_push_door_whose_lever_meets_the_pelvis_is_walked_through_crouched():
     assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.03, 0.85) == 0.0  # a narrow door: upright
     assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PULL, 1.03, 0.95) == 0.0  # a pull passage is upright
     assert crouch.for_walk(WalkGoal.STAND, DoorOpening.PUSH, 1.03, 0.95) == 0.0  # so is the walk to the door
-    assert walk_crouch(None, WalkGoal.THROUGH, DoorOpening.PUSH, (1.03, 0.95)) == 0.0
-    assert walk_crouch(crouch, WalkGoal.THROUGH, DoorOpening.PUSH, None) == 0.0
-    assert walk_crouch(crouch, WalkGoal.THROUGH, DoorOpening.PUSH, (1.01, 0.87)) == 0.06
+    assert CrouchRules().for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, (1.03, 0.95)) == 0.0
+    assert CrouchRules(push_passage=crouch).for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, None) == 0.0
+    assert CrouchRules(push_passage=crouch).for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, (1.01, 0.87)) == 0.06
 
 
 def test_talos_alone_crouches_through_a_push_door():
@@ -171,10 +172,10 @@ def test_opening_crouch_lowers_every_walk_and_is_checked(tmp_path, shared_data):
     assert load_profile("talos").opening_crouch == 0.0
     band = PassageCrouch((1.0, 1.04), 0.08)
     for goal in WalkGoal:
-        assert walk_crouch(None, goal, DoorOpening.PULL, None, 0.15) == 0.15
-    assert walk_crouch(band, WalkGoal.STAND, DoorOpening.PUSH, (1.02, 0.95), 0.05) == 0.05
-    assert walk_crouch(band, WalkGoal.THROUGH, DoorOpening.PUSH, (1.02, 0.95), 0.05) == 0.08
-    assert walk_crouch(band, WalkGoal.THROUGH, DoorOpening.PUSH, (1.02, 0.95), 0.12) == 0.12
+        assert CrouchRules(0.15).for_walk(goal, DoorOpening.PULL, None) == 0.15
+    assert CrouchRules(0.05, band).for_walk(WalkGoal.STAND, DoorOpening.PUSH, (1.02, 0.95)) == 0.05
+    assert CrouchRules(0.05, band).for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, (1.02, 0.95)) == 0.08
+    assert CrouchRules(0.12, band).for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, (1.02, 0.95)) == 0.12
     document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
     path = tmp_path / "robot_bad_crouch.yaml"
     for crouch in (-0.05, 0.2, float("nan")):
@@ -182,3 +183,42 @@ def test_opening_crouch_lowers_every_walk_and_is_checked(tmp_path, shared_data):
         path.write_text(yaml.safe_dump(document))
         with pytest.raises(RobotModelError, match=r"opening_crouch must be within \[0, 0.15\] m"):
             load_profile(str(path))
+
+
+def test_the_walk_to_a_door_with_a_low_lever_is_crouched_and_the_passage_is_not():
+    """A lever below the arm's upright reach lowers the walk to the door by the difference, up
+    to ``max_crouch``; the passage's walks stand up again (door_robot.crouch.LowLeverCrouch)."""
+    rules = CrouchRules(low_lever=LowLeverCrouch(0.95, 0.10))
+    pull_only = CrouchRules(low_lever=LowLeverCrouch(0.95, 0.10, frozenset({DoorOpening.PULL})))
+    assert pull_only.for_walk(WalkGoal.STAND, DoorOpening.PULL, (0.88, 0.90)) == pytest.approx(0.07)
+    assert pull_only.for_walk(WalkGoal.STAND, DoorOpening.PUSH, (0.88, 0.90)) == 0.0
+    for opening in DoorOpening:
+        assert rules.for_walk(WalkGoal.STAND, opening, (0.88, 0.90)) == pytest.approx(0.07)
+        assert rules.for_walk(WalkGoal.STAND, opening, (0.80, 0.90)) == pytest.approx(0.10)  # at most max_crouch
+        assert rules.for_walk(WalkGoal.STAND, opening, (1.00, 0.90)) == 0.0  # within reach
+        for goal in (WalkGoal.DOORWAY, WalkGoal.THROUGH):
+            assert rules.for_walk(goal, opening, (0.88, 0.90)) == 0.0
+    assert rules.for_walk(WalkGoal.STAND, DoorOpening.PULL, None) == 0.0  # no door known
+    assert CrouchRules(0.12, low_lever=LowLeverCrouch(0.95, 0.10)).for_walk(WalkGoal.STAND, DoorOpening.PULL,
+                                                                             (0.88, 0.9)) == pytest.approx(0.12)
+    talos = load_profile("talos").low_lever_crouch
+    assert talos is not None and 0.85 < talos.reach_height < 1.0 and talos.max_crouch <= 0.15
+    assert talos.openings == {DoorOpening.PULL}
+    assert load_profile("g1").low_lever_crouch is None
+
+
+@pytest.mark.parametrize("crouch, message", [
+    ({"reach_height": -0.9}, "reach_height must be a positive number"),
+    ({"reach_height": 0.95, "max_crouch": 0.2}, r"max_crouch must be within \(0, 0.15\]"),
+    ({"reach_height": 0.95, "max_crouch": float("nan")}, r"max_crouch must be within"),
+    ({"reach_height": 0.95, "depth": 1}, r"unknown field\(s\) \['depth'\]"),
+    ({"reach_height": 0.95, "openings": ["slide"]}, "openings must be a list of push, pull"),
+    ({"reach_height": 0.95, "openings": []}, "openings must name at least one"),
+])
+def test_a_bad_low_lever_crouch_is_refused(tmp_path, crouch, message):
+    document = yaml.safe_load((params_dir() / "robot_talos.yaml").read_text())
+    document["low_lever_crouch"] = crouch
+    path = tmp_path / "robot_bad_low_lever.yaml"
+    path.write_text(yaml.safe_dump(document))
+    with pytest.raises(RobotModelError, match=message):
+        load_profile(str(path))

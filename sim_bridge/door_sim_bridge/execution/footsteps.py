@@ -1,7 +1,7 @@
 """Walking a footstep plan: physically with the walking controller, or glided (kinematic).
 
 Validation first (any failure → REJECTED, nothing moves): a crouch the walker can take
-(:func:`~door_robot.profile.crouch_problem`), a non-empty plan whose feet alternate
+(:func:`~door_robot.crouch.crouch_problem`), a non-empty plan whose feet alternate
 left, right, … starting with the left foot (the contract's convention: even index = left),
 finite poses, and every step within the profile's walking limits, measured — as the footstep
 planner does — in the frame of the support foot (the other foot's latest placement, or its
@@ -39,7 +39,8 @@ from door_contract.converters.footsteps import FootPlacement, foot_of_index
 from door_contract.geometry import planar_pose, yaw_of
 from door_contract.payloads import OutcomeStatus
 from door_contract.vocabulary import Foot
-from door_robot.profile import WalkingLimits, crouch_problem
+from door_robot.crouch import crouch_problem
+from door_robot.profile import WalkingLimits
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution.base import Execution
 from door_sim_bridge.walking.gait import smooth_blend

@@ -34,7 +34,8 @@ import placo
 
 from door_contract.converters.footsteps import FootPlacement
 from door_contract.vocabulary import Foot
-from door_robot.profile import RobotProfile, crouch_problem
+from door_robot.crouch import crouch_problem
+from door_robot.profile import RobotProfile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.walking.dcm import CentreOfMassMotion, DcmFeedback, PatternDeparture
 from door_sim_bridge.walking.gait import GaitOptions, footstep_sequence, placo_parameters, smooth_blend

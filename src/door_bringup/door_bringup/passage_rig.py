@@ -49,7 +49,7 @@ from door_contract.vocabulary import Backend, DetectionMode, DoorOpening, HingeS
 from door_fsm.wiring import WiringError, success_sequence
 from door_fsm.work import STATE_WORK, WorkKind
 from door_robot.kinematics import RobotKinematics
-from door_robot.profile import load_profile, walk_crouch
+from door_robot.profile import load_profile
 from door_sim_bridge.errors import SimulationError
 from door_sim_bridge.execution import ExecutionResult, FootstepExecution, TrajectoryExecution
 from door_sim_bridge.world import ContactSolver, DoorConfig, DoorWorld, StanceConfig, WindConfig, WorldConfig
@@ -337,8 +337,8 @@ def _walk(world: DoorWorld, estimate: DoorEstimate, goal: WalkGoal, planners: Wa
     result, _ = planners.plan(problem, options_for_problem(problem, goal, options))
     if not result.succeeded or result.plan is None:
         return "planning failed", f"{result.outcome.value}: {result.reason}"
-    crouch = walk_crouch(world.profile.push_passage_crouch, goal, world.config.door.opening,
-                         (estimate.handle_position[2], estimate.width), world.profile.opening_crouch)  # as the FSM
+    crouch = world.profile.crouch.for_walk(goal, world.config.door.opening,
+                                           (estimate.handle_position[2], estimate.width))  # as the FSM
     walked = run_recording(world, FootstepExecution(world, contract_footsteps(problem.start, result.plan), crouch),
                            peaks, trace)
     if walked is None:

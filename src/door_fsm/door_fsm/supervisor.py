@@ -45,7 +45,8 @@ from door_fsm.operator_commands import UnknownCommandError, parse_command
 from door_fsm.records import Instant
 from door_fsm.states import Phase
 from door_fsm.summaries import door_summary, task_report, work_of
-from door_robot.profile import PassageCrouch, RobotProfile, walk_crouch
+from door_robot.crouch import CrouchRules
+from door_robot.profile import RobotProfile
 
 __all__ = ["GRASP_SERVICES", "SupervisedRobot", "Supervisor"]
 
@@ -62,14 +63,12 @@ class SupervisedRobot:
     name: str
     step_duration: float
     arms: tuple[tuple[Side, frozenset[str]], ...]
-    push_passage_crouch: PassageCrouch | None = None  # how low it walks through a push door (None: upright)
-    opening_crouch: float = 0.0  # m below its standing height it walks to the door and through it
+    crouch: CrouchRules = CrouchRules()  # how low it walks (its profile's; the default: upright)
 
     @classmethod
     def of(cls, profile: RobotProfile) -> SupervisedRobot:
         arms = tuple((Side(side), frozenset(arm.joints)) for side, arm in profile.arms.items())
-        return cls(profile.name, profile.walking.step_duration, arms, profile.push_passage_crouch,
-                   profile.opening_crouch)
+        return cls(profile.name, profile.walking.step_duration, arms, profile.crouch)
 
     @property
     def hands(self) -> frozenset[Side]:
@@ -240,14 +239,13 @@ class Supervisor:
 
     def walk_crouch(self, action: act.RequestFootsteps) -> float:
         """How far below its standing height the robot walks the plan ``action`` asks for (m):
-        the profile's ``opening_crouch`` (every walk), or its crouch through a push door whose
-        lever meets the pelvis (:class:`~door_robot.profile.PassageCrouch`) where that is lower,
-        the lever's height and the door's width the approved estimate's (``odom``'s z is the
-        floor's height)."""
+        the lowest of its profile's crouches (:class:`~door_robot.crouch.CrouchRules`: every
+        walk's, a push passage's whose lever meets the pelvis, the walk to a door whose lever is
+        low), the lever's height and the door's width the approved estimate's (``odom``'s z is
+        the floor's height)."""
         door = self.door.approved
         lever_and_width = (door.handle_position[2], door.width) if door is not None else None
-        return walk_crouch(self.robot.push_passage_crouch, action.goal, self.door.opening, lever_and_width,
-                           self.robot.opening_crouch)
+        return self.robot.crouch.for_walk(action.goal, self.door.opening, lever_and_width)
 
     def grasp_hand(self) -> tuple[Side, str]:
         """The hand that opens this door, and why it cannot ("" if it can)."""

@@ -32,7 +32,9 @@ ones the simulated Atlas could not walk.
 below its standing height (the walker's crouch), stands so while its arm opens the door and
 walks through so (a push passage's crouch may take it lower still). Atlas v4's shoulders are
 so high above a 0.91 m lever that upright its back bent forward into the leaf (4.7 kN); 0.15 m
-lower the arm reaches the lever without it.
+lower the arm reaches the lever without it. ``low_lever_crouch`` lowers the walk to a door
+whose lever is below the arm's upright reach, and ``push_passage_crouch`` the walk through a
+push door whose lever meets the pelvis (:mod:`door_robot.crouch`).
 """
 
 from __future__ import annotations
@@ -45,13 +47,13 @@ from typing import Any
 import numpy as np
 import yaml
 
-from door_contract.vocabulary import DoorOpening, Side, WalkGoal
+from door_contract.vocabulary import DoorOpening, Side
+from door_robot.crouch import MAX_CROUCH, CrouchRules, LowLeverCrouch, PassageCrouch, crouch_problem
 from door_robot.errors import RobotModelError
 from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
 
-__all__ = ["MAX_CROUCH", "STANCE_FIELDS", "crouch_problem", "ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "PassageCrouch", "RobotProfile", "WalkingLimits", "load_profile",
-           "walk_crouch",
-           "profile_path", "resolve_urdf"]
+__all__ = ["STANCE_FIELDS", "ArmSpec", "Axis", "CameraAxes", "ExtraFrame", "GraspAxes", "RobotProfile", "WalkingLimits",
+           "load_profile", "profile_path", "resolve_urdf"]
 
 
 @dataclass(frozen=True)
@@ -195,71 +197,6 @@ class WalkingLimits:
     body_offset: float = 0.0  # m, the body box's centre ahead of the base (arms reach further forward than back)
 
 
-MAX_CROUCH = 0.15
-"""m the pelvis may go below its standing height in a walk: the most a profile may ask for and
-the walker takes (TALOS's knees bend 0.34 rad more for 0.10 m)."""
-
-
-def crouch_problem(crouch: object) -> str:
-    """Why ``crouch`` (m) cannot be walked, or "": a finite number within [0, MAX_CROUCH]."""
-    if not isinstance(crouch, (int, float)) or isinstance(crouch, bool) or not math.isfinite(crouch):
-        return f"crouch {crouch!r} is not a finite number of metres"
-    if not 0.0 <= crouch <= MAX_CROUCH:
-        return f"crouch {crouch:.3f} m is outside [0, {MAX_CROUCH}] m"
-    return ""
-
-
-@dataclass(frozen=True)
-class PassageCrouch:
-    """How low the robot walks through a push door whose lever meets its pelvis.
-
-    Passing a push door sideways, the robot's back holds the leaf open, and the lever on the
-    leaf's near side rides along the back. At TALOS's walking height a lever at 1.00–1.04 m
-    lies in the notch between the pelvis's collision hull (its top 3.5 cm above the base) and
-    the torso's, and the pelvis, rising ~1 cm at each step, lifts it against its stop: 1–7 kN,
-    and the robot falls. Walking ``crouch`` m lower puts the notch below such a lever, which
-    then slides on the torso's back. Measured on the passage rig (stop 36, walked from 2.5 m,
-    the detector's error): four such doors 0.91–0.97 m wide passed 2 of 16 times upright, 13 of
-    16 at 0.08 m; two narrower ones (0.81, 0.85 m) 7 of 8 upright and 2 of 8 at 0.08 m — doors
-    narrower than ``min_door_width`` are passed upright.
-    """
-
-    lever_heights: tuple[float, float]  # m above the floor: levers in this band meet the notch
-    crouch: float  # m below the standing height, for such doors
-    min_door_width: float = 0.0  # m: narrower leaves are passed upright
-
-    def __post_init__(self) -> None:
-        low, high = self.lever_heights
-        if not (math.isfinite(low) and math.isfinite(high) and 0.0 < low < high):
-            raise RobotModelError(f"push_passage_crouch: lever_heights must be increasing positive metres, "
-                                  f"got {self.lever_heights}")
-        if not (math.isfinite(self.crouch) and 0.0 < self.crouch <= MAX_CROUCH):
-            raise RobotModelError(f"push_passage_crouch: crouch must be within (0, {MAX_CROUCH}] m, got {self.crouch!r}")
-        if not (math.isfinite(self.min_door_width) and self.min_door_width >= 0.0):
-            raise RobotModelError(f"push_passage_crouch: min_door_width must be finite and ≥ 0 m, "
-                                  f"got {self.min_door_width!r}")
-
-    def for_walk(self, goal: WalkGoal, opening: DoorOpening, lever_height: float, door_width: float) -> float:
-        """The crouch (m) of a walk to ``goal``: :attr:`crouch` through a push door at least
-        :attr:`min_door_width` wide whose lever (``lever_height``, m above the floor) is in the
-        band, else 0 (upright)."""
-        low, high = self.lever_heights
-        through_push = goal is WalkGoal.THROUGH and opening is DoorOpening.PUSH
-        wide = door_width >= self.min_door_width
-        return self.crouch if through_push and wide and low <= lever_height <= high else 0.0
-
-
-def walk_crouch(crouch: PassageCrouch | None, goal: WalkGoal, opening: DoorOpening,
-                door: tuple[float, float] | None, opening_crouch: float = 0.0) -> float:
-    """How far below its standing height the pelvis walks to ``goal`` (m): at least
-    ``opening_crouch`` (a profile's: the robot walks to the door, opens it and passes it that
-    low), lower where ``crouch`` (a profile's ``push_passage_crouch``) asks for it, for the
-    ``door``'s (lever height, width) in m; ``opening_crouch`` alone when the door is not known."""
-    if crouch is None or door is None:
-        return opening_crouch
-    return max(opening_crouch, crouch.for_walk(goal, opening, *door))
-
-
 @dataclass(frozen=True)
 class RobotProfile:
     name: str
@@ -279,10 +216,16 @@ class RobotProfile:
     push_passage_crouch: PassageCrouch | None = None  # None: every walk upright
     joint_efforts: dict[str, float] = field(default_factory=dict)  # joint -> effort limit (N·m) replacing the URDF's
     opening_crouch: float = 0.0  # m below the standing height it walks to the door, opens it and passes it
+    low_lever_crouch: LowLeverCrouch | None = None  # None: it walks to every door at its opening crouch
 
     def __post_init__(self) -> None:
         if problem := crouch_problem(self.opening_crouch):
             raise RobotModelError(f"opening_crouch must be within [0, {MAX_CROUCH}] m: {problem}")
+
+    @property
+    def crouch(self) -> CrouchRules:
+        """How low it walks (:mod:`door_robot.crouch`)."""
+        return CrouchRules(self.opening_crouch, self.push_passage_crouch, self.low_lever_crouch)
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
@@ -368,6 +311,7 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         push_passage_crouch=_passage_crouch(document.get("push_passage_crouch")),
         joint_efforts=_joint_efforts(document.get("joint_efforts")),
         opening_crouch=float(document.get("opening_crouch", 0.0)),
+        low_lever_crouch=_low_lever_crouch(document.get("low_lever_crouch")),
     )
 
 
@@ -391,6 +335,20 @@ def _passage_crouch(document: Any) -> PassageCrouch | None:
         raise RobotModelError(f"push_passage_crouch: unknown field(s) {unknown}; known: {sorted(known)}")
     low, high = (float(v) for v in document["lever_heights"])
     return PassageCrouch((low, high), float(document["crouch"]), float(document.get("min_door_width", 0.0)))
+
+
+def _low_lever_crouch(document: Any) -> LowLeverCrouch | None:
+    if document is None:
+        return None
+    known = {"reach_height", "max_crouch", "openings"}
+    if unknown := sorted(set(document) - known):
+        raise RobotModelError(f"low_lever_crouch: unknown field(s) {unknown}; known: {sorted(known)}")
+    openings = document.get("openings", [opening.value for opening in DoorOpening])
+    try:
+        doors = frozenset(DoorOpening(opening) for opening in openings)
+    except (ValueError, TypeError):
+        raise RobotModelError(f"low_lever_crouch: openings must be a list of push, pull; got {openings!r}") from None
+    return LowLeverCrouch(float(document["reach_height"]), float(document.get("max_crouch", MAX_CROUCH)), doors)
 
 
 def _grasp_axes_beside(document: Any) -> GraspAxes | None:

@@ -1,0 +1,145 @@
+"""How low the robot walks: the pelvis below its standing height, per walk, from the door.
+
+The walker takes a crouch per walk (:meth:`~door_sim_bridge.walking.controller.WalkingController.walk`:
+the CoM goes to the new height over the walk's first double support and stays there standing
+after it). A profile asks for it in three ways, the lowest winning (:class:`CrouchRules`):
+
+* ``opening_crouch``: every walk (a tall robot, Atlas v4, whose shoulders are far above any lever);
+* ``push_passage_crouch`` (:class:`PassageCrouch`): the walk through a push door whose lever
+  would ride in the notch between pelvis and torso;
+* ``low_lever_crouch`` (:class:`LowLeverCrouch`): the walk to a door whose lever is below the
+  arm's upright reach, so that the arm opens it without twisting and bending the torso.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from door_contract.vocabulary import DoorOpening, WalkGoal
+from door_robot.errors import RobotModelError
+
+__all__ = ["MAX_CROUCH", "CrouchRules", "LowLeverCrouch", "PassageCrouch", "crouch_problem"]
+
+MAX_CROUCH = 0.15
+"""m the pelvis may go below its standing height in a walk: the most a profile may ask for and
+the walker takes (TALOS's knees bend 0.34 rad more for 0.10 m)."""
+
+
+def crouch_problem(crouch: object) -> str:
+    """Why ``crouch`` (m) cannot be walked, or "": a finite number within [0, MAX_CROUCH]."""
+    if not isinstance(crouch, (int, float)) or isinstance(crouch, bool) or not math.isfinite(crouch):
+        return f"crouch {crouch!r} is not a finite number of metres"
+    if not 0.0 <= crouch <= MAX_CROUCH:
+        return f"crouch {crouch:.3f} m is outside [0, {MAX_CROUCH}] m"
+    return ""
+
+
+@dataclass(frozen=True)
+class PassageCrouch:
+    """How low the robot walks through a push door whose lever meets its pelvis.
+
+    Passing a push door sideways, the robot's back holds the leaf open, and the lever on the
+    leaf's near side rides along the back. At TALOS's walking height a lever at 1.00–1.04 m
+    lies in the notch between the pelvis's collision hull (its top 3.5 cm above the base) and
+    the torso's, and the pelvis, rising ~1 cm at each step, lifts it against its stop: 1–7 kN,
+    and the robot falls. Walking ``crouch`` m lower puts the notch below such a lever, which
+    then slides on the torso's back. Measured on the passage rig (stop 36, walked from 2.5 m,
+    the detector's error): four such doors 0.91–0.97 m wide passed 2 of 16 times upright, 13 of
+    16 at 0.08 m; two narrower ones (0.81, 0.85 m) 7 of 8 upright and 2 of 8 at 0.08 m — doors
+    narrower than ``min_door_width`` are passed upright.
+    """
+
+    lever_heights: tuple[float, float]  # m above the floor: levers in this band meet the notch
+    crouch: float  # m below the standing height, for such doors
+    min_door_width: float = 0.0  # m: narrower leaves are passed upright
+
+    def __post_init__(self) -> None:
+        low, high = self.lever_heights
+        if not (math.isfinite(low) and math.isfinite(high) and 0.0 < low < high):
+            raise RobotModelError(f"push_passage_crouch: lever_heights must be increasing positive metres, "
+                                  f"got {self.lever_heights}")
+        if not (math.isfinite(self.crouch) and 0.0 < self.crouch <= MAX_CROUCH):
+            raise RobotModelError(f"push_passage_crouch: crouch must be within (0, {MAX_CROUCH}] m, got {self.crouch!r}")
+        if not (math.isfinite(self.min_door_width) and self.min_door_width >= 0.0):
+            raise RobotModelError(f"push_passage_crouch: min_door_width must be finite and ≥ 0 m, "
+                                  f"got {self.min_door_width!r}")
+
+    def for_walk(self, goal: WalkGoal, opening: DoorOpening, lever_height: float, door_width: float) -> float:
+        """The crouch (m) of a walk to ``goal``: :attr:`crouch` through a push door at least
+        :attr:`min_door_width` wide whose lever (``lever_height``, m above the floor) is in the
+        band, else 0 (upright)."""
+        low, high = self.lever_heights
+        through_push = goal is WalkGoal.THROUGH and opening is DoorOpening.PUSH
+        wide = door_width >= self.min_door_width
+        return self.crouch if through_push and wide and low <= lever_height <= high else 0.0
+
+
+@dataclass(frozen=True)
+class LowLeverCrouch:
+    """How low the robot walks to a door whose lever is below the arm's upright reach.
+
+    TALOS reaches a low lever by twisting and bending its torso (the approach's IK, posture
+    cost and all): placed at the stand pose of a 0.90 m pull door hinged right, the torso is
+    turned 0.76 rad towards a lever at 0.85 m and 0.33 rad towards one at 1.00 m, and after the
+    turn and the pull of a 0.86 m lever it stood at (−0.85, +0.43) rad of yaw and pitch against
+    (−0.10, −0.09) for a 0.95 m one. The joints both arms share stay where the opening left
+    them while the other hand blocks a pull door (the block, the release, the walk to the
+    doorway, the tuck): bent so, the head pushed the leaf to 1.75 rad in the doorway, the leaf
+    came back onto the upper arm in the tuck (0.8–1.2 kN) and the robot fell in 3 of 6 passages
+    of seed 10 trial 13's door (lever 0.86 m; 0 of 2 at 0.95 m). Five of the nine failures of
+    the Monte-Carlo campaigns of stops 37–39 were doors with levers below 0.89 m (a sixth of the
+    range), push and pull alike. Walking to such a door ``reach_height`` − lever lower puts the
+    lever where the arm meets a ``reach_height`` lever upright: on the passage rig that door went
+    through 3 of 3 times, the leaf touching only the grippers (≤ 143 N). Only the walk to the
+    door is lowered: the passages' walks stand up again (crouched, the knees reach forward, and a
+    sideways passage's depth is what meets the posts of a narrow door). ``openings`` says which
+    doors: TALOS opens a push door standing sideways with its torso at its pitch limit whatever
+    the lever's height, and crouched the grasp missed (2.0 cm off) in 3 of 5 push doors with
+    levers at 0.86–0.87 m and one of the other two fell, where upright 2 of 2 went through.
+    """
+
+    reach_height: float  # m above the floor: the lowest lever the arm opens with the torso near upright
+    max_crouch: float = MAX_CROUCH  # m: the most it crouches for a lever
+    openings: frozenset[DoorOpening] = frozenset(DoorOpening)  # the doors it crouches to
+
+    def __post_init__(self) -> None:
+        if not (math.isfinite(self.reach_height) and self.reach_height > 0.0):
+            raise RobotModelError(f"low_lever_crouch: reach_height must be a positive number of metres, "
+                                  f"got {self.reach_height!r}")
+        if not (math.isfinite(self.max_crouch) and 0.0 < self.max_crouch <= MAX_CROUCH):
+            raise RobotModelError(f"low_lever_crouch: max_crouch must be within (0, {MAX_CROUCH}] m, "
+                                  f"got {self.max_crouch!r}")
+        if not self.openings:
+            raise RobotModelError("low_lever_crouch: openings must name at least one of push, pull")
+
+    def for_walk(self, goal: WalkGoal, opening: DoorOpening, lever_height: float) -> float:
+        """The crouch (m) of a walk to ``goal``: reach_height − ``lever_height`` (m above the
+        floor), within [0, max_crouch], for the walk to a door of one of :attr:`openings`
+        (:attr:`WalkGoal.STAND`), else 0."""
+        if goal is not WalkGoal.STAND or opening not in self.openings:
+            return 0.0
+        return min(self.max_crouch, max(0.0, self.reach_height - lever_height))
+
+
+@dataclass(frozen=True)
+class CrouchRules:
+    """A robot's crouches (its profile's): the lowest of them is the walk's."""
+
+    opening: float = 0.0  # m below the standing height of every walk (``opening_crouch``)
+    push_passage: PassageCrouch | None = None  # through a push door whose lever meets the pelvis
+    low_lever: LowLeverCrouch | None = None  # to a door whose lever is below the arm's upright reach
+
+    def __post_init__(self) -> None:
+        if problem := crouch_problem(self.opening):
+            raise RobotModelError(f"opening_crouch must be within [0, {MAX_CROUCH}] m: {problem}")
+
+    def for_walk(self, goal: WalkGoal, opening: DoorOpening, door: tuple[float, float] | None) -> float:
+        """How far below its standing height the pelvis walks to ``goal`` (m), for the door's
+        (lever height, width) in m: :attr:`opening` alone when the door is not known."""
+        if door is None:
+            return self.opening
+        lever_height, width = door
+        passage = self.push_passage.for_walk(goal, opening, lever_height, width) if self.push_passage else 0.0
+        low = self.low_lever.for_walk(goal, opening, lever_height) if self.low_lever else 0.0
+        return max(self.opening, passage, low)
