@@ -133,7 +133,7 @@ class FsmSupervisorNode(Node):
             self.pubs[Topics.WALK_CROUCH].publish(Float64(data=crouch))
             if crouch > 0.0:
                 self.get_logger().info(f"the walk {action.goal} goes {crouch:.3f} m below the standing height "
-                                       "(the lever at the pelvis)")
+                                       "(the profile's crouch for this door and walk)")
         kind, request = self.core.request(action)
         self.pubs[PLANNER_TOPICS[kind].request].publish(String(data=encode(request)))
 
