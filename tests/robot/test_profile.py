@@ -134,16 +134,24 @@ def test_talos_alone_crouches_through_a_push_door():
     assert load_profile("g1").push_passage_crouch is None
 
 
-@pytest.mark.parametrize("crouch, message", [
-    ({"lever_heights": [1.05, 1.00], "crouch": 0.05}, "lever_heights must be increasing"),
-    ({"lever_heights": [1.00, 1.05], "crouch": 0.3}, r"crouch must be within \(0, 0.15\]"),
-    ({"lever_heights": [1.00, 1.05], "crouch": 0.05, "depth": 1}, r"unknown field\(s\) \['depth'\]"),
-    ({"lever_heights": [1.00, 1.05], "crouch": 0.05, "min_door_width": -1}, "min_door_width must be"),
+@pytest.mark.parametrize("field, crouch, message", [
+    ("push_passage_crouch", {"lever_heights": [1.05, 1.00], "crouch": 0.05}, "lever_heights must be increasing"),
+    ("push_passage_crouch", {"lever_heights": [1.00, 1.05], "crouch": 0.3}, r"crouch must be within \(0, 0.15\]"),
+    ("push_passage_crouch", {"lever_heights": [1.00, 1.05], "crouch": 0.05, "depth": 1},
+     r"unknown field\(s\) \['depth'\]"),
+    ("push_passage_crouch", {"lever_heights": [1.00, 1.05], "crouch": 0.05, "min_door_width": -1},
+     "min_door_width must be"),
+    ("low_lever_crouch", {"reach_height": -0.9}, "reach_height must be a positive number"),
+    ("low_lever_crouch", {"reach_height": 0.95, "max_crouch": 0.2}, r"max_crouch must be within \(0, 0.15\]"),
+    ("low_lever_crouch", {"reach_height": 0.95, "max_crouch": float("nan")}, r"max_crouch must be within"),
+    ("low_lever_crouch", {"reach_height": 0.95, "depth": 1}, r"unknown field\(s\) \['depth'\]"),
+    ("low_lever_crouch", {"reach_height": 0.95, "openings": ["slide"]}, "openings must be a list of push, pull"),
+    ("low_lever_crouch", {"reach_height": 0.95, "openings": []}, "openings must name at least one"),
 ])
-def test_a_bad_passage_crouch_is_refused(tmp_path, crouch, message):
-    document = yaml.safe_load((params_dir() / "robot_g1.yaml").read_text())
-    document["push_passage_crouch"] = crouch
-    path = tmp_path / "robot_g1_variant.yaml"
+def test_a_bad_crouch_is_refused(tmp_path, field, crouch, message):
+    document = yaml.safe_load((params_dir() / "robot_talos.yaml").read_text())
+    document[field] = crouch
+    path = tmp_path / "robot_bad_crouch_rule.yaml"
     path.write_text(yaml.safe_dump(document))
     with pytest.raises(RobotModelError, match=message):
         load_profile(str(path))
@@ -205,20 +213,3 @@ def test_the_walk_to_a_door_with_a_low_lever_is_crouched_and_the_passage_is_not(
     assert talos is not None and 0.85 < talos.reach_height < 1.0 and talos.max_crouch <= 0.15
     assert talos.openings == {DoorOpening.PULL}
     assert load_profile("g1").low_lever_crouch is None
-
-
-@pytest.mark.parametrize("crouch, message", [
-    ({"reach_height": -0.9}, "reach_height must be a positive number"),
-    ({"reach_height": 0.95, "max_crouch": 0.2}, r"max_crouch must be within \(0, 0.15\]"),
-    ({"reach_height": 0.95, "max_crouch": float("nan")}, r"max_crouch must be within"),
-    ({"reach_height": 0.95, "depth": 1}, r"unknown field\(s\) \['depth'\]"),
-    ({"reach_height": 0.95, "openings": ["slide"]}, "openings must be a list of push, pull"),
-    ({"reach_height": 0.95, "openings": []}, "openings must name at least one"),
-])
-def test_a_bad_low_lever_crouch_is_refused(tmp_path, crouch, message):
-    document = yaml.safe_load((params_dir() / "robot_talos.yaml").read_text())
-    document["low_lever_crouch"] = crouch
-    path = tmp_path / "robot_bad_low_lever.yaml"
-    path.write_text(yaml.safe_dump(document))
-    with pytest.raises(RobotModelError, match=message):
-        load_profile(str(path))
