@@ -74,7 +74,7 @@ from footstep_planner.requests import (
     stand_pose,
 )
 
-__all__ = ["NODE_DEFAULTS", "WALKED_THROUGH", "EstimateError", "HandCommand", "PassageRun", "erroneous_estimate",
+__all__ = ["NODE_DEFAULTS", "WALKED_THROUGH", "DoorShape", "EstimateError", "HandCommand", "PassageRun", "erroneous_estimate",
            "main", "motion_setup", "open_door", "opening_hand", "opening_sequence", "passage_steps", "perfect_estimate",
            "run_door", "stand_world"]
 
