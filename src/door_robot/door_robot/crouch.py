@@ -87,8 +87,8 @@ class LowLeverCrouch:
     them while the other hand blocks a pull door (the block, the release, the walk to the
     doorway, the tuck): bent so, the head pushed the leaf to 1.75 rad in the doorway, the leaf
     came back onto the upper arm in the tuck (0.8–1.2 kN) and the robot fell in 3 of 6 passages
-    of seed 10 trial 13's door (lever 0.86 m; 0 of 2 at 0.95 m). Five of the nine failures of
-    the Monte-Carlo campaigns of stops 37–39 were doors with levers below 0.89 m (a sixth of the
+    of seed 10 trial 13's door (lever 0.86 m; 0 of 2 at 0.95 m). Six of the eight doors that
+    failed in the Monte-Carlo campaigns of stops 37–39 had levers below 0.89 m (a sixth of the
     range), push and pull alike. Walking to such a door ``reach_height`` − lever lower puts the
     lever where the arm meets a ``reach_height`` lever upright: on the passage rig that door went
     through 3 of 3 times, the leaf touching only the grippers (≤ 143 N). Only the walk to the
