@@ -98,7 +98,6 @@ def test_walked_to_the_stand_pose_the_robot_opens_the_door_and_walks_through_it(
     assert run.stage == WALKED_THROUGH, run.line()
 
 
-
 @pytest.mark.slow
 def test_a_pull_door_with_a_low_lever_is_opened_crouched_and_passed_without_striking_the_body():
     """Seed 10 trial 13's door (lever 0.861 m, wind 1.68 N·m): walked to upright, the torso stayed
@@ -114,6 +113,7 @@ def test_a_pull_door_with_a_low_lever_is_opened_crouched_and_passed_without_stri
                    wind=1.679)
     assert run.stage == WALKED_THROUGH and run.status == "success", run.line()
     assert run.strikes and run.strikes[0][1] < 400.0, run.line()  # upright: 1.2-1.7 kN
+
 
 @pytest.fixture(scope="module")
 def true_estimate():

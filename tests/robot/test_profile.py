@@ -129,9 +129,9 @@ def test_a_push_door_whose_lever_meets_the_pelvis_is_walked_through_crouched():
 
 
 def test_talos_alone_crouches_through_a_push_door():
-    talos = load_profile("talos").push_passage_crouch
+    talos = load_profile("talos").crouch.push_passage
     assert talos is not None and 0.0 < talos.crouch <= 0.10 and talos.lever_heights[0] < 1.032 < talos.lever_heights[1]
-    assert load_profile("g1").push_passage_crouch is None
+    assert load_profile("g1").crouch.push_passage is None
 
 
 @pytest.mark.parametrize("field, crouch, message", [
@@ -176,8 +176,8 @@ def test_opening_crouch_lowers_every_walk_and_is_checked(tmp_path, shared_data):
     """A tall robot walks to the door, opens it and passes it ``opening_crouch`` lower (Atlas v4:
     0.15 m); a push passage's crouch takes it lower still where that is deeper; TALOS walks
     upright but for its passage crouch."""
-    assert load_profile("atlas_v4").opening_crouch == 0.15
-    assert load_profile("talos").opening_crouch == 0.0
+    assert load_profile("atlas_v4").crouch.opening == 0.15
+    assert load_profile("talos").crouch.opening == 0.0
     band = PassageCrouch((1.0, 1.04), 0.08)
     for goal in WalkGoal:
         assert CrouchRules(0.15).for_walk(goal, DoorOpening.PULL, None) == 0.15
@@ -209,7 +209,7 @@ def test_the_walk_to_a_door_with_a_low_lever_is_crouched_and_the_passage_is_not(
     assert rules.for_walk(WalkGoal.STAND, DoorOpening.PULL, None) == 0.0  # no door known
     assert CrouchRules(0.12, low_lever=LowLeverCrouch(0.95, 0.10)).for_walk(WalkGoal.STAND, DoorOpening.PULL,
                                                                              (0.88, 0.9)) == pytest.approx(0.12)
-    talos = load_profile("talos").low_lever_crouch
+    talos = load_profile("talos").crouch.low_lever
     assert talos is not None and 0.85 < talos.reach_height < 1.0 and talos.max_crouch <= 0.15
     assert talos.openings == {DoorOpening.PULL}
-    assert load_profile("g1").low_lever_crouch is None
+    assert load_profile("g1").crouch.low_lever is None

@@ -48,7 +48,7 @@ import numpy as np
 import yaml
 
 from door_contract.vocabulary import DoorOpening, Side
-from door_robot.crouch import MAX_CROUCH, CrouchRules, LowLeverCrouch, PassageCrouch, crouch_problem
+from door_robot.crouch import MAX_CROUCH, CrouchRules, LowLeverCrouch, PassageCrouch
 from door_robot.errors import RobotModelError
 from door_robot.locations import cmeel_share_dir, params_dir, shared_data_dir
 
@@ -213,19 +213,8 @@ class RobotProfile:
     head_camera_axes: CameraAxes | None = None  # the optical axes in head_camera_frame; None: the sim's guess
     look_posture: dict[str, float] = field(default_factory=dict)  # joint -> rad over the walking posture, to see the door
     stance: dict[str, float] = field(default_factory=dict)  # footstep planner stand distance -> m (STANCE_FIELDS)
-    push_passage_crouch: PassageCrouch | None = None  # None: every walk upright
     joint_efforts: dict[str, float] = field(default_factory=dict)  # joint -> effort limit (N·m) replacing the URDF's
-    opening_crouch: float = 0.0  # m below the standing height it walks to the door, opens it and passes it
-    low_lever_crouch: LowLeverCrouch | None = None  # None: it walks to every door at its opening crouch
-
-    def __post_init__(self) -> None:
-        if problem := crouch_problem(self.opening_crouch):
-            raise RobotModelError(f"opening_crouch must be within [0, {MAX_CROUCH}] m: {problem}")
-
-    @property
-    def crouch(self) -> CrouchRules:
-        """How low it walks (:mod:`door_robot.crouch`)."""
-        return CrouchRules(self.opening_crouch, self.push_passage_crouch, self.low_lever_crouch)
+    crouch: CrouchRules = CrouchRules()  # how low it walks (door_robot.crouch; the default: upright)
 
     def arm(self, side: Side) -> ArmSpec:
         return self.arms[side]
@@ -308,10 +297,10 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         head_camera_axes=_camera_axes(document.get("head_camera_axes")),
         look_posture=_posture(document, "look_posture"),
         stance=_stance(document.get("stance")),
-        push_passage_crouch=_passage_crouch(document.get("push_passage_crouch")),
         joint_efforts=_joint_efforts(document.get("joint_efforts")),
-        opening_crouch=float(document.get("opening_crouch", 0.0)),
-        low_lever_crouch=_low_lever_crouch(document.get("low_lever_crouch")),
+        crouch=CrouchRules(float(document.get("opening_crouch", 0.0)),
+                           _passage_crouch(document.get("push_passage_crouch")),
+                           _low_lever_crouch(document.get("low_lever_crouch"))),
     )
 
 
