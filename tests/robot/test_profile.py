@@ -147,6 +147,9 @@ def test_talos_alone_crouches_through_a_push_door():
     ("low_lever_crouch", {"reach_height": 0.95, "depth": 1}, r"unknown field\(s\) \['depth'\]"),
     ("low_lever_crouch", {"reach_height": 0.95, "openings": ["slide"]}, "openings must be a list of push, pull"),
     ("low_lever_crouch", {"reach_height": 0.95, "openings": []}, "openings must name at least one"),
+    ("low_lever_crouch", {"reach_height": "high"}, "has a malformed value: could not convert"),
+    ("push_passage_crouch", {"lever_heights": [1.00, 1.02, 1.05], "crouch": 0.05}, "has a malformed value"),
+    ("opening_crouch", "deep", "has a malformed value"),
 ])
 def test_a_bad_crouch_is_refused(tmp_path, field, crouch, message):
     document = yaml.safe_load((params_dir() / "robot_talos.yaml").read_text())

@@ -260,6 +260,8 @@ def load_profile(name_or_path: str = "talos") -> RobotProfile:
         return _profile_from_document(document)
     except (KeyError, TypeError) as error:
         raise RobotModelError(f"robot profile {name_or_path!r} is incomplete: {error}") from None
+    except ValueError as error:  # a number that is not one (float("high")) or a list of the wrong length
+        raise RobotModelError(f"robot profile {name_or_path!r} has a malformed value: {error}") from None
 
 
 def _xyz(values: Any) -> tuple[float, float, float]:
