@@ -39,6 +39,7 @@ push door whose lever meets the pelvis (:mod:`door_robot.crouch`).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -256,16 +257,51 @@ def profile_path(name_or_path: str) -> Path:
 def load_profile(name_or_path: str = "talos") -> RobotProfile:
     """Read and validate a robot profile (``talos``, ``atlas_v4``, ``drc_hubo``, ``g1`` or a path)."""
     document = yaml.safe_load(profile_path(name_or_path).read_text())
+    if not isinstance(document, dict):
+        raise RobotModelError(f"robot profile {name_or_path!r} is no mapping of fields")
     try:
         return _profile_from_document(document)
-    except (KeyError, TypeError) as error:
+    except KeyError as error:
         raise RobotModelError(f"robot profile {name_or_path!r} is incomplete: {error}") from None
-    except ValueError as error:  # a number that is not one (float("high")) or a list of the wrong length
-        raise RobotModelError(f"robot profile {name_or_path!r} has a malformed value: {error}") from None
+    except RobotModelError as error:
+        raise RobotModelError(f"robot profile {name_or_path!r}: {error}") from None
 
 
-def _xyz(values: Any) -> tuple[float, float, float]:
-    x, y, z = (float(v) for v in values)
+def _number(value: Any, field: str) -> float:
+    """``value`` as a float; a :class:`RobotModelError` naming ``field`` when it is no number."""
+    if isinstance(value, bool):
+        raise RobotModelError(f"{field} must be a number, got {value!r}")
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        raise RobotModelError(f"{field} must be a number, got {value!r}") from None
+
+
+def _numbers(values: Any, field: str, count: int) -> tuple[float, ...]:
+    """``values`` as ``count`` floats (a YAML list)."""
+    if not isinstance(values, (list, tuple)) or len(values) != count:
+        raise RobotModelError(f"{field} must be a list of {count} numbers, got {values!r}")
+    return tuple(_number(value, f"{field}[{index}]") for index, value in enumerate(values))
+
+
+def _mapping(document: Any, field: str) -> dict[Any, Any]:
+    """An optional mapping of the profile ({} when absent)."""
+    if document is None:
+        return {}
+    if not isinstance(document, dict):
+        raise RobotModelError(f"{field} must be a mapping, got {document!r}")
+    return document
+
+
+def _side(name: Any, field: str) -> Side:
+    try:
+        return Side(name)
+    except ValueError:
+        raise RobotModelError(f"{field}: {name!r} is no side (left, right)") from None
+
+
+def _xyz(values: Any, field: str) -> tuple[float, float, float]:
+    x, y, z = _numbers(values, field, 3)
     return x, y, z
 
 
@@ -276,34 +312,45 @@ reach is the robot's, like its stride."""
 
 
 def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
-    arms = {Side(side): ArmSpec(tuple(arm["joints"]), arm["tcp_parent_frame"], _xyz(arm["grasp_offset"]),
+    arms = {_side(side, "arms"): ArmSpec(tuple(arm["joints"]), arm["tcp_parent_frame"],
+                                         _xyz(arm["grasp_offset"], f"arms.{side}.grasp_offset"),
                                 GraspAxes.from_document(arm["grasp_axes"]), arm.get("gripper_joint"),
                                 _grasp_axes_beside(arm.get("grasp_axes_beside")))
-            for side, arm in document["arms"].items()}
-    posture = {name: float(value) for name, value in document["nominal_posture"].items()}
-    if not all(math.isfinite(v) for v in posture.values()):
-        raise RobotModelError("nominal posture contains NaN or infinity")
+            for side, arm in _mapping(document["arms"], "arms").items()}
+    posture = _posture(document, "nominal_posture", required=True)
     return RobotProfile(
         name=document["name"],
         urdf_path=resolve_urdf(document["urdf"]),
         base_frame=document["base_frame"],
-        base_height=float(document["base_height"]),
+        base_height=_number(document["base_height"], "base_height"),
         arms=arms,
         head_camera_frame=document["head_camera_frame"],
-        feet={Side(side): frame for side, frame in document["feet"].items()},
+        feet={_side(side, "feet"): frame for side, frame in _mapping(document["feet"], "feet").items()},
         nominal_posture=posture,
-        walking=WalkingLimits(**{k: float(v) for k, v in document["walking"].items()}),
+        walking=_walking_limits(document["walking"]),
         walking_posture=_posture(document, "walking_posture"),
-        extra_frames={name: ExtraFrame(frame["parent"], _xyz(frame["xyz"]))
-                      for name, frame in (document.get("extra_frames") or {}).items()},
+        extra_frames={name: ExtraFrame(frame["parent"], _xyz(frame["xyz"], f"extra_frames.{name}.xyz"))
+                      for name, frame in _mapping(document.get("extra_frames"), "extra_frames").items()},
         head_camera_axes=_camera_axes(document.get("head_camera_axes")),
         look_posture=_posture(document, "look_posture"),
         stance=_stance(document.get("stance")),
         joint_efforts=_joint_efforts(document.get("joint_efforts")),
-        crouch=CrouchRules(float(document.get("opening_crouch", 0.0)),
+        crouch=CrouchRules(_number(document.get("opening_crouch", 0.0), "opening_crouch"),
                            _passage_crouch(document.get("push_passage_crouch")),
                            _low_lever_crouch(document.get("low_lever_crouch"))),
     )
+
+
+def _walking_limits(document: Any) -> WalkingLimits:
+    """The ``walking`` mapping: :class:`WalkingLimits`' fields, numbers (the defaulted ones optional)."""
+    limits = {str(name): _number(value, f"walking.{name}") for name, value in _mapping(document, "walking").items()}
+    fields = {field.name: field for field in dataclasses.fields(WalkingLimits)}
+    if unknown := sorted(set(limits) - set(fields)):
+        raise RobotModelError(f"walking: unknown field(s) {unknown}; known: {sorted(fields)}")
+    required = {name for name, field in fields.items() if field.default is dataclasses.MISSING}
+    if missing := sorted(required - set(limits)):
+        raise RobotModelError(f"walking: missing field(s) {missing}")
+    return WalkingLimits(**limits)
 
 
 def _joint_efforts(document: Any) -> dict[str, float]:
@@ -311,7 +358,8 @@ def _joint_efforts(document: Any) -> dict[str, float]:
     that replace the URDF's where a copy of a model is known to have changed them (the
     simulated motors' maximum forces; whether each joint exists is checked against the URDF
     where the robot is loaded)."""
-    efforts = {str(name): float(value) for name, value in (document or {}).items()}
+    efforts = {str(name): _number(value, f"joint_efforts.{name}")
+               for name, value in _mapping(document, "joint_efforts").items()}
     if not all(math.isfinite(v) and v > 0.0 for v in efforts.values()):
         raise RobotModelError(f"joint_efforts must be positive and finite, got {efforts}")
     return efforts
@@ -324,8 +372,9 @@ def _passage_crouch(document: Any) -> PassageCrouch | None:
     unknown = sorted(set(document) - known)
     if unknown:
         raise RobotModelError(f"push_passage_crouch: unknown field(s) {unknown}; known: {sorted(known)}")
-    low, high = (float(v) for v in document["lever_heights"])
-    return PassageCrouch((low, high), float(document["crouch"]), float(document.get("min_door_width", 0.0)))
+    low, high = _numbers(document["lever_heights"], "push_passage_crouch.lever_heights", 2)
+    return PassageCrouch((low, high), _number(document["crouch"], "push_passage_crouch.crouch"),
+                         _number(document.get("min_door_width", 0.0), "push_passage_crouch.min_door_width"))
 
 
 def _low_lever_crouch(document: Any) -> LowLeverCrouch | None:
@@ -339,7 +388,8 @@ def _low_lever_crouch(document: Any) -> LowLeverCrouch | None:
         doors = frozenset(DoorOpening(opening) for opening in openings)
     except (ValueError, TypeError):
         raise RobotModelError(f"low_lever_crouch: openings must be a list of push, pull; got {openings!r}") from None
-    return LowLeverCrouch(float(document["reach_height"]), float(document.get("max_crouch", MAX_CROUCH)), doors)
+    return LowLeverCrouch(_number(document["reach_height"], "low_lever_crouch.reach_height"),
+                          _number(document.get("max_crouch", MAX_CROUCH), "low_lever_crouch.max_crouch"), doors)
 
 
 def _grasp_axes_beside(document: Any) -> GraspAxes | None:
@@ -348,7 +398,7 @@ def _grasp_axes_beside(document: Any) -> GraspAxes | None:
 
 def _stance(document: Any) -> dict[str, float]:
     """The optional ``stance`` mapping: :data:`STANCE_FIELDS` names to positive finite metres."""
-    stance = {str(name): float(value) for name, value in (document or {}).items()}
+    stance = {str(name): _number(value, f"stance.{name}") for name, value in _mapping(document, "stance").items()}
     unknown = sorted(set(stance) - STANCE_FIELDS)
     if unknown:
         raise RobotModelError(f"stance: unknown field(s) {unknown}; known: {sorted(STANCE_FIELDS)}")
@@ -357,9 +407,11 @@ def _stance(document: Any) -> dict[str, float]:
     return stance
 
 
-def _posture(document: dict[str, Any], key: str) -> dict[str, float]:
-    """An optional ``joint: rad`` mapping of the profile, finite."""
-    posture = {name: float(value) for name, value in (document.get(key) or {}).items()}
+def _posture(document: dict[str, Any], key: str, required: bool = False) -> dict[str, float]:
+    """A ``joint: rad`` mapping of the profile (optional unless ``required``), finite."""
+    if required and key not in document:
+        raise KeyError(key)
+    posture = {name: _number(value, f"{key}.{name}") for name, value in _mapping(document.get(key), key).items()}
     if not all(math.isfinite(v) for v in posture.values()):
         raise RobotModelError(f"{key} contains NaN or infinity")
     return posture
