@@ -110,8 +110,8 @@ class Topics:
                               frame=Frame.ODOM.value, unit="m")
     WALK_CROUCH = TopicSpec("/walking/crouch", "std_msgs/msg/Float64", LATCHED, "fsm_supervisor",
                             "how far below its standing height the pelvis walks the next footstep plans "
-                            "(0 upright; a push door's lever at the pelvis); set with each walk's "
-                            "request, read when a plan starts", unit="m")
+                            "(0 upright, negative above; a push door's lever at the pelvis); set with "
+                            "each walk's request, read when a plan starts", unit="m")
     HANDLE_POSE = TopicSpec("/door/handle_pose", "geometry_msgs/msg/PoseStamped", EVENTS,
                             "door_detector", "handle grasp point; x = door normal towards the "
                             "robot, z up", frame=Frame.ODOM.value, unit="m")

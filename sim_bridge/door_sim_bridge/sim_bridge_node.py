@@ -93,15 +93,16 @@ class SimBridgeNode(Node):
                          path_to_footsteps, lambda world, steps: FootstepExecution(world, steps, crouch))
 
     def _on_crouch(self, msg: Float64) -> None:
-        """The crouch of the walks to come; one outside [0, MAX_CROUCH] m is refused (the last
-        one stays) with a REJECTED footstep outcome (request id 0: it names no plan)."""
+        """The crouch of the walks to come (negative: a rise); one outside [−MAX_RISE, MAX_CROUCH] m
+        is refused (the last one stays) with a REJECTED footstep outcome (request id 0: it names no plan)."""
         problem = crouch_problem(msg.data)
         if problem:
             self._report(ExecutionOutcome(ExecutionKind.FOOTSTEPS, 0, OutcomeStatus.REJECTED,
                                           f"/walking/crouch refused: {problem}; walks keep {self.crouch:.3f} m"))
             return
         if msg.data != self.crouch:
-            self.get_logger().info(f"walks from now on {msg.data:.3f} m below the standing height")
+            self.get_logger().info(f"walks from now on {abs(msg.data):.3f} m "
+                                   f"{'below' if msg.data >= 0.0 else 'above'} the standing height")
         self.crouch = float(msg.data)
 
     def _on_command(self, kind: ExecutionKind, msg: Any, stop_reason: str,

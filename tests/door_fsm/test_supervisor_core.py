@@ -240,6 +240,28 @@ def test_a_push_door_is_walked_through_crouched_when_its_lever_meets_the_pelvis(
     pull = _started(crouching, DoorOpening.PULL)
     pull.door.approved = ESTIMATE
     assert pull.walk_crouch(through) == 0.0
+
+
+def test_a_narrow_push_door_is_walked_through_higher_when_its_lever_meets_the_pelvis() -> None:
+    """Through a push door narrower than ``min_door_width`` whose lever is in the band and at
+    most ``narrow_rise_top``, the walk rises ``narrow_rise`` (a negative crouch); a higher lever
+    is passed upright, and any crouch a rule asks for wins over the rise."""
+    band = PassageCrouch((0.90, 1.00), 0.06, min_door_width=0.87, narrow_rise=0.04, narrow_rise_top=0.96)
+    push = _started(SupervisedRobot("talos", 1.5, HANDS_ONLY, CrouchRules(push_passage=band)))
+    stand = _walk_request(push)
+    through = act.RequestFootsteps(stand.request_id + 1, WalkGoal.THROUGH)
+    push.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "width": 0.84})  # the lever at 0.95 m
+    assert push.walk_crouch(stand) == 0.0 and push.walk_crouch(through) == pytest.approx(-0.04)
+    push.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "width": 0.84, "handle_position": (1.2, -0.35, 0.98)})
+    assert push.walk_crouch(through) == 0.0  # in the band, above narrow_rise_top
+    push.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "width": 0.95})
+    assert push.walk_crouch(through) == pytest.approx(0.06)  # a wide door: crouched
+    tall = _started(SupervisedRobot("talos", 1.5, HANDS_ONLY, CrouchRules(0.10, band)))
+    tall.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "width": 0.84})
+    assert tall.walk_crouch(through) == pytest.approx(0.10)  # the opening crouch wins over a rise
+    pull = _started(SupervisedRobot("talos", 1.5, HANDS_ONLY, CrouchRules(push_passage=band)), DoorOpening.PULL)
+    pull.door.approved = ESTIMATE
+    assert pull.walk_crouch(through) == 0.0
     upright = _started(SupervisedRobot("g1", 0.8, HANDS_ONLY))
     upright.door.approved = ESTIMATE
     assert upright.walk_crouch(through) == 0.0  # a profile without a crouch

@@ -138,9 +138,10 @@ def test_bad_footstep_plans_are_rejected_and_move_nothing(bridge):
 def test_a_bad_crouch_is_refused_and_a_good_one_lowers_the_next_walk(bridge):
     """/walking/crouch: a value the walker cannot take is REJECTED (request id 0: it names no
     plan), moves nothing and leaves the crouch as it was; a good one is taken (the heartbeat
-    says so) and the next walk goes that much lower; back at 0 the next walk stands up again."""
+    says so) and the next walk goes that much lower (a negative one: higher); back at 0 the next
+    walk stands up again."""
     before = bridge.settled_state()
-    for value, words in ((math.nan, "not a finite number"), (-0.02, "outside"), (0.4, "outside")):
+    for value, words in ((math.nan, "not a finite number"), (-0.06, "outside"), (0.4, "outside")):
         count = len(bridge.answers("execution", 0))
         bridge.pubs["WALK_CROUCH"].publish(Float64(data=value))
         assert bridge.wait(lambda n=count: len(bridge.answers("execution", 0)) > n), value
@@ -149,7 +150,7 @@ def test_a_bad_crouch_is_refused_and_a_good_one_lowers_the_next_walk(bridge):
         assert "walks keep 0.000 m" in outcome.reason
     _assert_still(bridge, before)
     bridge.assert_lives(bridge.process, "sim_bridge")
-    for crouch, height in ((0.06, before.base[2] - 0.06), (0.0, before.base[2])):
+    for crouch, height in ((0.06, before.base[2] - 0.06), (-0.04, before.base[2] + 0.04), (0.0, before.base[2])):
         bridge.pubs["WALK_CROUCH"].publish(Float64(data=crouch))
         assert bridge.wait(lambda c=crouch: bridge.values.get("sim_bridge", {}).get("crouch") == f"{c:.3f}")
         request_id = _send(bridge, "FOOTSTEP_PLAN", footsteps_to_path(bridge.walk_plan(2)))

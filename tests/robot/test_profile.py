@@ -143,6 +143,11 @@ def test_a_value_that_is_no_number_is_refused_naming_its_field(tmp_path, edit, m
 def test_a_push_door_whose_lever_meets_the_pelvis_is_walked_through_crouched():
     crouch = PassageCrouch((1.00, 1.05), 0.06, min_door_width=0.87)
     assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.03, 0.95) == 0.06
+    assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.03, 0.84) == 0.0  # narrow: no rise asked for
+    talos = load_profile("talos").crouch.push_passage
+    assert talos is not None and talos.narrow_rise == 0.04 and talos.narrow_rise_top == 1.02
+    assert talos.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.00, 0.86) == -0.04  # narrow, lever low in the band
+    assert talos.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.035, 0.86) == 0.0  # narrow, lever high in it
     assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 0.95, 0.95) == 0.0  # below the band
     assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.07, 0.95) == 0.0  # above it
     assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.03, 0.85) == 0.0  # a narrow door: upright
@@ -166,6 +171,14 @@ def test_talos_alone_crouches_through_a_push_door():
      r"unknown field\(s\) \['depth'\]"),
     ("push_passage_crouch", {"lever_heights": [1.00, 1.05], "crouch": 0.05, "min_door_width": -1},
      "min_door_width must be"),
+    ("push_passage_crouch", {"lever_heights": [1.00, 1.05], "crouch": 0.05, "narrow_rise": 0.06,
+                             "narrow_rise_top": 1.02}, r"narrow_rise must be within \[0, 0.04\]"),
+    ("push_passage_crouch", {"lever_heights": [1.00, 1.05], "crouch": 0.05, "narrow_rise": -0.02,
+                             "narrow_rise_top": 1.02}, r"narrow_rise must be within"),
+    ("push_passage_crouch", {"lever_heights": [1.00, 1.05], "crouch": 0.05, "narrow_rise": 0.04},
+     r"narrow_rise_top must be within lever_heights"),
+    ("push_passage_crouch", {"lever_heights": [1.00, 1.05], "crouch": 0.05, "narrow_rise": 0.04,
+                             "narrow_rise_top": 1.10}, r"narrow_rise_top must be within lever_heights"),
     ("low_lever_crouch", {"reach_height": -0.9}, "reach_height must be a positive number"),
     ("low_lever_crouch", {"reach_height": 0.95, "max_crouch": 0.2}, r"max_crouch must be within \(0, 0.15\]"),
     ("low_lever_crouch", {"reach_height": 0.95, "max_crouch": float("nan")}, r"max_crouch must be within"),

@@ -18,6 +18,7 @@ from walk_plans import sole_error, straight_plan, turn_plan
 
 from door_contract.payloads import OutcomeStatus
 from door_contract.vocabulary import Foot
+from door_robot.crouch import MAX_RISE
 from door_sim_bridge.execution import FootstepExecution, TrajectoryExecution
 from door_sim_bridge.execution.footsteps import STILL_RADIUS, STILL_TIME, STILL_TIMEOUT
 from door_sim_bridge.walking.controller import Measurement, stance_frame
@@ -165,7 +166,19 @@ def test_a_crouched_walk_lowers_the_pelvis_and_the_next_upright_walk_raises_it_a
     assert sole_error(world, plan)[0] < 0.03
 
 
-@pytest.mark.parametrize("crouch", [-0.01, 0.5, math.nan])
+def test_a_risen_walk_raises_the_pelvis_and_lands_on_the_plan(world):
+    """Through a narrow push door whose lever would meet the pelvis's notch the robot walks
+    higher (a negative crouch, door_robot.crouch.PassageCrouch.narrow_rise): the pelvis ends the
+    walk MAX_RISE above its standing height, the soles on the plan."""
+    standing = world.base_pose()[2, 3]
+    plan = straight_plan(world, 0.2, 4)
+    result = FootstepExecution(world, plan, crouch=-MAX_RISE).run()
+    assert result.status is OutcomeStatus.SUCCESS, result.reason
+    assert world.base_pose()[2, 3] == pytest.approx(standing + MAX_RISE, abs=0.01)
+    assert sole_error(world, plan)[0] < 0.03
+
+
+@pytest.mark.parametrize("crouch", [-0.06, 0.5, math.nan])
 def test_a_walk_at_a_crouch_it_cannot_take_is_rejected_and_the_robot_stands(world, crouch):
     start = world.base_pose()
     result = FootstepExecution(world, straight_plan(world, 0.2, 2), crouch=crouch).run()

@@ -131,8 +131,9 @@ class FsmSupervisorNode(Node):
         if isinstance(action, act.RequestFootsteps):  # the walk's crouch is set before its plan can exist
             crouch = self.core.walk_crouch(action)
             self.pubs[Topics.WALK_CROUCH].publish(Float64(data=crouch))
-            if crouch > 0.0:
-                self.get_logger().info(f"the walk {action.goal} goes {crouch:.3f} m below the standing height "
+            if crouch != 0.0:
+                self.get_logger().info(f"the walk {action.goal} goes {abs(crouch):.3f} m "
+                                       f"{'below' if crouch > 0.0 else 'above'} the standing height "
                                        "(the profile's crouch for this door and walk)")
         kind, request = self.core.request(action)
         self.pubs[PLANNER_TOPICS[kind].request].publish(String(data=encode(request)))

@@ -6,7 +6,8 @@ after it). A profile asks for it in three ways, the lowest winning (:class:`Crou
 
 * ``opening_crouch``: every walk (a tall robot, Atlas v4, whose shoulders are far above any lever);
 * ``push_passage_crouch`` (:class:`PassageCrouch`): the walk through a push door whose lever
-  would ride in the notch between pelvis and torso;
+  would ride in the notch between pelvis and torso (through a narrow one, a rise instead: a
+  negative crouch, the pelvis *above* its standing height, when no other rule crouches);
 * ``low_lever_crouch`` (:class:`LowLeverCrouch`): the walk to a door whose lever is below the
   arm's upright reach, so that the arm opens it without twisting and bending the torso.
 """
@@ -19,19 +20,24 @@ from dataclasses import dataclass
 from door_contract.vocabulary import DoorOpening, WalkGoal
 from door_robot.errors import RobotModelError
 
-__all__ = ["MAX_CROUCH", "CrouchRules", "LowLeverCrouch", "PassageCrouch", "crouch_problem"]
+__all__ = ["MAX_CROUCH", "MAX_RISE", "CrouchRules", "LowLeverCrouch", "PassageCrouch", "crouch_problem"]
 
 MAX_CROUCH = 0.15
 """m the pelvis may go below its standing height in a walk: the most a profile may ask for and
 the walker takes (TALOS's knees bend 0.34 rad more for 0.10 m)."""
+MAX_RISE = 0.04
+"""m the pelvis may go above its standing height in a walk (a crouch of −MAX_RISE): TALOS stands
+with its knees bent 0.86 rad and walked 0.04 m higher through every door tried; 0.06 m higher it
+fell in the first side-steps of 2 of 3 passages (stop 42, passage rig)."""
 
 
 def crouch_problem(crouch: object) -> str:
-    """Why ``crouch`` (m) cannot be walked, or "": a finite number within [0, MAX_CROUCH]."""
+    """Why ``crouch`` (m below the standing height; negative: above) cannot be walked, or "":
+    a finite number within [−MAX_RISE, MAX_CROUCH]."""
     if not isinstance(crouch, (int, float)) or isinstance(crouch, bool) or not math.isfinite(crouch):
         return f"crouch {crouch!r} is not a finite number of metres"
-    if not 0.0 <= crouch <= MAX_CROUCH:
-        return f"crouch {crouch:.3f} m is outside [0, {MAX_CROUCH}] m"
+    if not -MAX_RISE <= crouch <= MAX_CROUCH:
+        return f"crouch {crouch:.3f} m is outside [{-MAX_RISE}, {MAX_CROUCH}] m (negative: above the standing height)"
     return ""
 
 
@@ -47,12 +53,24 @@ class PassageCrouch:
     then slides on the torso's back. Measured on the passage rig (stop 36, walked from 2.5 m,
     the detector's error): four such doors 0.91–0.97 m wide passed 2 of 16 times upright, 13 of
     16 at 0.08 m; two narrower ones (0.81, 0.85 m) 7 of 8 upright and 2 of 8 at 0.08 m — doors
-    narrower than ``min_door_width`` are passed upright.
+    narrower than ``min_door_width`` are not crouched through (the knees reach forward into the
+    closing leaf and the posts).
+
+    Through those narrow doors the robot walks ``narrow_rise`` m *higher* instead when the lever
+    is at most ``narrow_rise_top``: the notch rises above the lever, which slides on the pelvis's
+    back. Upright, the lever hooked the pelvis as the body swayed back at a side-step and dragged
+    the leaf to its stop: narrow push doors hinged left went through 9 of 18 times, and 0 of 3 at
+    0.86 m with a 1.00 m lever (stop 41; the right hinge's 12 of 12 is luck of the sway's phase).
+    0.04 m higher (stop 42, walked from 2.5 m, the detector's error): 0.86 m / 1.00 m 3 of 3 per
+    hinge, 0.82 m / 1.02 m 3 of 3 (upright 2 of 3) — but 0.855 m / 1.035 m 0 of 3 (upright 2 of
+    3): a lever that high meets the risen notch, hence ``narrow_rise_top``.
     """
 
     lever_heights: tuple[float, float]  # m above the floor: levers in this band meet the notch
     crouch: float  # m below the standing height, for such doors
-    min_door_width: float = 0.0  # m: narrower leaves are passed upright
+    min_door_width: float = 0.0  # m: narrower leaves are not crouched through
+    narrow_rise: float = 0.0  # m above the standing height through a narrower leaf (0: upright)
+    narrow_rise_top: float = 0.0  # m above the floor: the highest lever a narrower leaf is risen for
 
     def __post_init__(self) -> None:
         low, high = self.lever_heights
@@ -64,15 +82,24 @@ class PassageCrouch:
         if not (math.isfinite(self.min_door_width) and self.min_door_width >= 0.0):
             raise RobotModelError(f"push_passage_crouch: min_door_width must be finite and ≥ 0 m, "
                                   f"got {self.min_door_width!r}")
+        if not (math.isfinite(self.narrow_rise) and 0.0 <= self.narrow_rise <= MAX_RISE):
+            raise RobotModelError(f"push_passage_crouch: narrow_rise must be within [0, {MAX_RISE}] m, "
+                                  f"got {self.narrow_rise!r}")
+        if self.narrow_rise > 0.0 and not low <= self.narrow_rise_top <= high:
+            raise RobotModelError(f"push_passage_crouch: narrow_rise_top must be within lever_heights "
+                                  f"{self.lever_heights}, got {self.narrow_rise_top!r}")
 
     def for_walk(self, goal: WalkGoal, opening: DoorOpening, lever_height: float, door_width: float) -> float:
-        """The crouch (m) of a walk to ``goal``: :attr:`crouch` through a push door at least
-        :attr:`min_door_width` wide whose lever (``lever_height``, m above the floor) is in the
-        band, else 0 (upright)."""
+        """The crouch (m) of a walk to ``goal`` through a push door whose lever (``lever_height``,
+        m above the floor) is in the band: :attr:`crouch` when the leaf is at least
+        :attr:`min_door_width` wide, −:attr:`narrow_rise` (a rise) when it is narrower and the
+        lever at most :attr:`narrow_rise_top`; else 0 (upright)."""
         low, high = self.lever_heights
-        through_push = goal is WalkGoal.THROUGH and opening is DoorOpening.PUSH
-        wide = door_width >= self.min_door_width
-        return self.crouch if through_push and wide and low <= lever_height <= high else 0.0
+        if goal is not WalkGoal.THROUGH or opening is not DoorOpening.PUSH or not low <= lever_height <= high:
+            return 0.0
+        if door_width >= self.min_door_width:
+            return self.crouch
+        return -self.narrow_rise if lever_height <= self.narrow_rise_top else 0.0
 
 
 @dataclass(frozen=True)
@@ -124,7 +151,8 @@ class LowLeverCrouch:
 
 @dataclass(frozen=True)
 class CrouchRules:
-    """A robot's crouches (its profile's): the lowest of them is the walk's."""
+    """A robot's crouches (its profile's): the lowest of them is the walk's; a passage's rise
+    (a negative crouch) only when none of them crouches."""
 
     opening: float = 0.0  # m below the standing height of every walk (``opening_crouch``)
     push_passage: PassageCrouch | None = None  # through a push door whose lever meets the pelvis
@@ -142,4 +170,5 @@ class CrouchRules:
         lever_height, width = door
         passage = self.push_passage.for_walk(goal, opening, lever_height, width) if self.push_passage else 0.0
         low = self.low_lever.for_walk(goal, opening, lever_height) if self.low_lever else 0.0
-        return max(self.opening, passage, low)
+        deepest = max(self.opening, passage, low)
+        return deepest if deepest > 0.0 else min(passage, 0.0)

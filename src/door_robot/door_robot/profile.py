@@ -368,13 +368,13 @@ def _joint_efforts(document: Any) -> dict[str, float]:
 def _passage_crouch(document: Any) -> PassageCrouch | None:
     if document is None:
         return None
-    known = {"lever_heights", "crouch", "min_door_width"}
+    known = {"lever_heights", "crouch", "min_door_width", "narrow_rise", "narrow_rise_top"}
     unknown = sorted(set(document) - known)
     if unknown:
         raise RobotModelError(f"push_passage_crouch: unknown field(s) {unknown}; known: {sorted(known)}")
     low, high = _numbers(document["lever_heights"], "push_passage_crouch.lever_heights", 2)
-    return PassageCrouch((low, high), _number(document["crouch"], "push_passage_crouch.crouch"),
-                         _number(document.get("min_door_width", 0.0), "push_passage_crouch.min_door_width"))
+    return PassageCrouch((low, high), *(_number(document.get(name, 0.0), f"push_passage_crouch.{name}")
+                                        for name in ("crouch", "min_door_width", "narrow_rise", "narrow_rise_top")))
 
 
 def _low_lever_crouch(document: Any) -> LowLeverCrouch | None:
