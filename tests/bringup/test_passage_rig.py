@@ -115,6 +115,31 @@ def test_a_pull_door_with_a_low_lever_is_opened_crouched_and_passed_without_stri
     assert run.strikes and run.strikes[0][1] < 400.0, run.line()  # upright: 1.2-1.7 kN
 
 
+@pytest.mark.slow
+def test_a_narrow_push_door_whose_lever_meets_the_notch_is_walked_through_higher(monkeypatch):
+    """A 0.86 m push door hinged left, its lever at 1.00 m: upright, the lever hooked the pelvis
+    as the body swayed back at a side-step and the robot fell (0 of 3); the profile's
+    ``narrow_rise`` walks it 4 cm higher (door_robot.crouch.PassageCrouch) and it passes, the
+    pelvis above its standing height all through."""
+    from door_bringup import passage_rig
+    from door_bringup.passage_rig import WALKED_THROUGH, DoorShape, EstimateError, run_door
+    from door_robot.kinematics import RobotKinematics
+    from door_robot.profile import load_profile
+
+    heights: list[float] = []
+
+    class Watched(passage_rig.FootstepExecution):  # the walks the rig starts, their crouch recorded
+        def __init__(self, world, footsteps, crouch=0.0):
+            heights.append(crouch)
+            super().__init__(world, footsteps, crouch)
+
+    monkeypatch.setattr(passage_rig, "FootstepExecution", Watched)
+    run = run_door(DoorOpening.PUSH, HingeSide.LEFT, 0, RobotKinematics(load_profile("talos")), walk_from=2.5,
+                   estimate_error=EstimateError(0.006, np.radians(0.5)), door_shape=DoorShape(0.86, 1.00))
+    assert heights == [0.0, -0.04]  # to the door upright, through it 4 cm higher
+    assert run.stage == WALKED_THROUGH and run.status == "success", run.line()
+
+
 @pytest.fixture(scope="module")
 def true_estimate():
     with stand_world(DoorConfig()) as world:
