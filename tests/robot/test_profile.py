@@ -127,8 +127,13 @@ def test_a_bad_beside_grasp_is_refused(tmp_path, axes, message):
     (lambda d: d["arms"].update(middle=d["arms"]["left"]), "arms: 'middle' is no side"),
     (lambda d: d.update(stance={"stand_reach": "near"}), "stance.stand_reach must be a number, got 'near'"),
     (lambda d: d.update(joint_efforts={"arm_left_1_joint": True}), "joint_efforts.arm_left_1_joint must be a number"),
+    (lambda d: d["arms"].update(left=5), "arms.left must be a mapping, got 5"),
+    (lambda d: d["arms"]["left"].update(joints=7), "arms.left.joints must be a list of names, got 7"),
+    (lambda d: d.update(push_passage_crouch=0.08), "push_passage_crouch must be a mapping, got 0.08"),
+    (lambda d: d.update(low_lever_crouch=[0.95]), r"low_lever_crouch must be a mapping, got \[0.95\]"),
 ], ids=["base_height", "stride", "walking-unknown", "walking-missing", "posture-value", "posture-list",
-        "posture-absent", "grasp_offset", "arm-side", "stance", "effort-bool"])
+        "posture-absent", "grasp_offset", "arm-side", "stance", "effort-bool", "arm-number", "joints-number",
+        "passage-crouch-number", "low-lever-list"])
 def test_a_value_that_is_no_number_is_refused_naming_its_field(tmp_path, edit, message):
     """Every number a profile holds is read through one check that names the field: a typo in
     the YAML is a RobotModelError saying where, never a bare ValueError from ``float()``."""

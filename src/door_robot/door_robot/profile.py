@@ -267,41 +267,48 @@ def load_profile(name_or_path: str = "talos") -> RobotProfile:
         raise RobotModelError(f"robot profile {name_or_path!r}: {error}") from None
 
 
-def _number(value: Any, field: str) -> float:
-    """``value`` as a float; a :class:`RobotModelError` naming ``field`` when it is no number."""
+def _number(value: Any, where: str) -> float:
+    """``value`` as a float; a :class:`RobotModelError` naming the field ``where`` when it is no number."""
     if isinstance(value, bool):
-        raise RobotModelError(f"{field} must be a number, got {value!r}")
+        raise RobotModelError(f"{where} must be a number, got {value!r}")
     try:
         return float(value)
     except (TypeError, ValueError):
-        raise RobotModelError(f"{field} must be a number, got {value!r}") from None
+        raise RobotModelError(f"{where} must be a number, got {value!r}") from None
 
 
-def _numbers(values: Any, field: str, count: int) -> tuple[float, ...]:
+def _numbers(values: Any, where: str, count: int) -> tuple[float, ...]:
     """``values`` as ``count`` floats (a YAML list)."""
     if not isinstance(values, (list, tuple)) or len(values) != count:
-        raise RobotModelError(f"{field} must be a list of {count} numbers, got {values!r}")
-    return tuple(_number(value, f"{field}[{index}]") for index, value in enumerate(values))
+        raise RobotModelError(f"{where} must be a list of {count} numbers, got {values!r}")
+    return tuple(_number(value, f"{where}[{index}]") for index, value in enumerate(values))
 
 
-def _mapping(document: Any, field: str) -> dict[Any, Any]:
+def _names(values: Any, where: str) -> tuple[str, ...]:
+    """``values`` as a list of names (joints)."""
+    if not isinstance(values, (list, tuple)) or not all(isinstance(value, str) for value in values):
+        raise RobotModelError(f"{where} must be a list of names, got {values!r}")
+    return tuple(values)
+
+
+def _mapping(document: Any, where: str) -> dict[Any, Any]:
     """An optional mapping of the profile ({} when absent)."""
     if document is None:
         return {}
     if not isinstance(document, dict):
-        raise RobotModelError(f"{field} must be a mapping, got {document!r}")
+        raise RobotModelError(f"{where} must be a mapping, got {document!r}")
     return document
 
 
-def _side(name: Any, field: str) -> Side:
+def _side(name: Any, where: str) -> Side:
     try:
         return Side(name)
     except ValueError:
-        raise RobotModelError(f"{field}: {name!r} is no side (left, right)") from None
+        raise RobotModelError(f"{where}: {name!r} is no side (left, right)") from None
 
 
-def _xyz(values: Any, field: str) -> tuple[float, float, float]:
-    x, y, z = _numbers(values, field, 3)
+def _xyz(values: Any, where: str) -> tuple[float, float, float]:
+    x, y, z = _numbers(values, where, 3)
     return x, y, z
 
 
@@ -312,10 +319,7 @@ reach is the robot's, like its stride."""
 
 
 def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
-    arms = {_side(side, "arms"): ArmSpec(tuple(arm["joints"]), arm["tcp_parent_frame"],
-                                         _xyz(arm["grasp_offset"], f"arms.{side}.grasp_offset"),
-                                GraspAxes.from_document(arm["grasp_axes"]), arm.get("gripper_joint"),
-                                _grasp_axes_beside(arm.get("grasp_axes_beside")))
+    arms = {_side(side, "arms"): _arm(_mapping(arm, f"arms.{side}"), f"arms.{side}")
             for side, arm in _mapping(document["arms"], "arms").items()}
     posture = _posture(document, "nominal_posture", required=True)
     return RobotProfile(
@@ -329,7 +333,7 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
         nominal_posture=posture,
         walking=_walking_limits(document["walking"]),
         walking_posture=_posture(document, "walking_posture"),
-        extra_frames={name: ExtraFrame(frame["parent"], _xyz(frame["xyz"], f"extra_frames.{name}.xyz"))
+        extra_frames={name: _extra_frame(_mapping(frame, f"extra_frames.{name}"), f"extra_frames.{name}")
                       for name, frame in _mapping(document.get("extra_frames"), "extra_frames").items()},
         head_camera_axes=_camera_axes(document.get("head_camera_axes")),
         look_posture=_posture(document, "look_posture"),
@@ -341,13 +345,24 @@ def _profile_from_document(document: dict[str, Any]) -> RobotProfile:
     )
 
 
+def _arm(document: dict[str, Any], where: str) -> ArmSpec:
+    return ArmSpec(_names(document["joints"], f"{where}.joints"), document["tcp_parent_frame"],
+                   _xyz(document["grasp_offset"], f"{where}.grasp_offset"),
+                   GraspAxes.from_document(document["grasp_axes"]), document.get("gripper_joint"),
+                   _grasp_axes_beside(document.get("grasp_axes_beside")))
+
+
+def _extra_frame(document: dict[str, Any], where: str) -> ExtraFrame:
+    return ExtraFrame(document["parent"], _xyz(document["xyz"], f"{where}.xyz"))
+
+
 def _walking_limits(document: Any) -> WalkingLimits:
     """The ``walking`` mapping: :class:`WalkingLimits`' fields, numbers (the defaulted ones optional)."""
     limits = {str(name): _number(value, f"walking.{name}") for name, value in _mapping(document, "walking").items()}
-    fields = {field.name: field for field in dataclasses.fields(WalkingLimits)}
+    fields = {spec.name: spec for spec in dataclasses.fields(WalkingLimits)}
     if unknown := sorted(set(limits) - set(fields)):
         raise RobotModelError(f"walking: unknown field(s) {unknown}; known: {sorted(fields)}")
-    required = {name for name, field in fields.items() if field.default is dataclasses.MISSING}
+    required = {name for name, spec in fields.items() if spec.default is dataclasses.MISSING}
     if missing := sorted(required - set(limits)):
         raise RobotModelError(f"walking: missing field(s) {missing}")
     return WalkingLimits(**limits)
@@ -368,6 +383,7 @@ def _joint_efforts(document: Any) -> dict[str, float]:
 def _passage_crouch(document: Any) -> PassageCrouch | None:
     if document is None:
         return None
+    document = _mapping(document, "push_passage_crouch")
     known = {"lever_heights", "crouch", "min_door_width", "narrow_rise", "narrow_rise_top"}
     unknown = sorted(set(document) - known)
     if unknown:
@@ -380,6 +396,7 @@ def _passage_crouch(document: Any) -> PassageCrouch | None:
 def _low_lever_crouch(document: Any) -> LowLeverCrouch | None:
     if document is None:
         return None
+    document = _mapping(document, "low_lever_crouch")
     known = {"reach_height", "max_crouch", "openings"}
     if unknown := sorted(set(document) - known):
         raise RobotModelError(f"low_lever_crouch: unknown field(s) {unknown}; known: {sorted(known)}")
