@@ -51,4 +51,4 @@ def test_an_unknown_robot_or_one_whose_urdf_is_absent_is_refused_before_anything
     monkeypatch.setenv("DOOR_SHARED_DATA", str(tmp_path))  # no ../shared here: Atlas's URDF is missing
     with pytest.raises(SystemExit) as stop:
         parse_options(["--robot", "atlas_v4"])
-    assert stop.value.code == 2 and "--robot atlas_v4: URDF not found" in capsys.readouterr().err
+    assert stop.value.code == 2 and "--robot: robot profile 'atlas_v4': URDF not found" in capsys.readouterr().err

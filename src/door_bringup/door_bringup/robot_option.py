@@ -26,4 +26,4 @@ def check_robot(parser: argparse.ArgumentParser, robot: str) -> None:
     try:
         load_profile(robot)
     except RobotModelError as error:
-        parser.error(f"--robot {robot}: {error}")
+        parser.error(f"--robot: {error}")  # the error names the profile
