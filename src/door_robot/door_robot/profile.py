@@ -300,6 +300,12 @@ def _mapping(document: Any, where: str) -> dict[Any, Any]:
     return document
 
 
+def _refuse_unknown(names: Any, known: Any, where: str) -> None:
+    """A RobotModelError naming the fields of ``names`` that are not ``known``."""
+    if unknown := sorted(set(names) - set(known)):
+        raise RobotModelError(f"{where}: unknown field(s) {unknown}; known: {sorted(known)}")
+
+
 def _side(name: Any, where: str) -> Side:
     try:
         return Side(name)
@@ -360,8 +366,7 @@ def _walking_limits(document: Any) -> WalkingLimits:
     """The ``walking`` mapping: :class:`WalkingLimits`' fields, numbers (the defaulted ones optional)."""
     limits = {str(name): _number(value, f"walking.{name}") for name, value in _mapping(document, "walking").items()}
     fields = {spec.name: spec for spec in dataclasses.fields(WalkingLimits)}
-    if unknown := sorted(set(limits) - set(fields)):
-        raise RobotModelError(f"walking: unknown field(s) {unknown}; known: {sorted(fields)}")
+    _refuse_unknown(limits, fields, "walking")
     required = {name for name, spec in fields.items() if spec.default is dataclasses.MISSING}
     if missing := sorted(required - set(limits)):
         raise RobotModelError(f"walking: missing field(s) {missing}")
@@ -383,23 +388,20 @@ def _joint_efforts(document: Any) -> dict[str, float]:
 def _passage_crouch(document: Any) -> PassageCrouch | None:
     if document is None:
         return None
-    document = _mapping(document, "push_passage_crouch")
-    known = {"lever_heights", "crouch", "min_door_width", "narrow_rise", "narrow_rise_top"}
-    unknown = sorted(set(document) - known)
-    if unknown:
-        raise RobotModelError(f"push_passage_crouch: unknown field(s) {unknown}; known: {sorted(known)}")
-    low, high = _numbers(document["lever_heights"], "push_passage_crouch.lever_heights", 2)
-    return PassageCrouch((low, high), *(_number(document.get(name, 0.0), f"push_passage_crouch.{name}")
-                                        for name in ("crouch", "min_door_width", "narrow_rise", "narrow_rise_top")))
+    where = "push_passage_crouch"
+    document = _mapping(document, where)
+    optional = ("min_door_width", "narrow_rise", "narrow_rise_top")
+    _refuse_unknown(document, {"lever_heights", "crouch", *optional}, where)
+    low, high = _numbers(document["lever_heights"], f"{where}.lever_heights", 2)
+    return PassageCrouch((low, high), _number(document["crouch"], f"{where}.crouch"),
+                         **{name: _number(document.get(name, 0.0), f"{where}.{name}") for name in optional})
 
 
 def _low_lever_crouch(document: Any) -> LowLeverCrouch | None:
     if document is None:
         return None
     document = _mapping(document, "low_lever_crouch")
-    known = {"reach_height", "max_crouch", "openings"}
-    if unknown := sorted(set(document) - known):
-        raise RobotModelError(f"low_lever_crouch: unknown field(s) {unknown}; known: {sorted(known)}")
+    _refuse_unknown(document, {"reach_height", "max_crouch", "openings"}, "low_lever_crouch")
     openings = document.get("openings", [opening.value for opening in DoorOpening])
     try:
         doors = frozenset(DoorOpening(opening) for opening in openings)
@@ -416,9 +418,7 @@ def _grasp_axes_beside(document: Any) -> GraspAxes | None:
 def _stance(document: Any) -> dict[str, float]:
     """The optional ``stance`` mapping: :data:`STANCE_FIELDS` names to positive finite metres."""
     stance = {str(name): _number(value, f"stance.{name}") for name, value in _mapping(document, "stance").items()}
-    unknown = sorted(set(stance) - STANCE_FIELDS)
-    if unknown:
-        raise RobotModelError(f"stance: unknown field(s) {unknown}; known: {sorted(STANCE_FIELDS)}")
+    _refuse_unknown(stance, STANCE_FIELDS, "stance")
     if not all(math.isfinite(v) and v > 0.0 for v in stance.values()):
         raise RobotModelError(f"stance distances must be positive and finite, got {stance}")
     return stance
