@@ -43,7 +43,7 @@ from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatu
 from door_contract.stamps import stamp_ns
 from door_contract.topics import Services, Topics
 from door_contract.vocabulary import Side
-from door_robot.crouch import crouch_problem
+from door_robot.crouch import crouch_problem, walking_height
 from door_robot.errors import RobotModelError
 from door_robot.meshes import MeshUris
 from door_sim_bridge.deadman import DeadMan
@@ -101,8 +101,7 @@ class SimBridgeNode(Node):
                                           f"/walking/crouch refused: {problem}; walks keep {self.crouch:.3f} m"))
             return
         if msg.data != self.crouch:
-            self.get_logger().info(f"walks from now on {abs(msg.data):.3f} m "
-                                   f"{'below' if msg.data >= 0.0 else 'above'} the standing height")
+            self.get_logger().info(f"walks from now on {walking_height(msg.data)}")
         self.crouch = float(msg.data)
 
     def _on_command(self, kind: ExecutionKind, msg: Any, stop_reason: str,

@@ -119,8 +119,8 @@ def test_a_pull_door_with_a_low_lever_is_opened_crouched_and_passed_without_stri
 def test_a_narrow_push_door_whose_lever_meets_the_notch_is_walked_through_higher(monkeypatch):
     """A 0.86 m push door hinged left, its lever at 1.00 m: upright, the lever hooked the pelvis
     as the body swayed back at a side-step and the robot fell (0 of 3); the profile's
-    ``narrow_rise`` walks it 4 cm higher (door_robot.crouch.PassageCrouch) and it passes, the
-    pelvis above its standing height all through."""
+    ``narrow_rise`` asks the walk through to go 4 cm higher (door_robot.crouch.PassageCrouch;
+    the walker's rise is tests/sim_bridge/test_sim_walking.py's) and it passes."""
     from door_bringup import passage_rig
     from door_bringup.passage_rig import WALKED_THROUGH, DoorShape, EstimateError, run_door
     from door_robot.kinematics import RobotKinematics

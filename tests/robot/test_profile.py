@@ -5,7 +5,7 @@ import pytest
 import yaml
 
 from door_contract.vocabulary import DoorOpening, WalkGoal
-from door_robot.crouch import CrouchRules, LowLeverCrouch, PassageCrouch
+from door_robot.crouch import CrouchRules, LowLeverCrouch, PassageCrouch, walking_height
 from door_robot.errors import RobotModelError
 from door_robot.locations import params_dir
 from door_robot.profile import CameraAxes, load_profile
@@ -153,6 +153,8 @@ def test_a_push_door_whose_lever_meets_the_pelvis_is_walked_through_crouched():
     assert talos is not None and talos.narrow_rise == 0.04 and talos.narrow_rise_top == 1.02
     assert talos.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.00, 0.86) == -0.04  # narrow, lever low in the band
     assert talos.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.035, 0.86) == 0.0  # narrow, lever high in it
+    assert walking_height(-0.04) == "0.040 m above the standing height"
+    assert walking_height(0.08) == "0.080 m below the standing height"
     assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 0.95, 0.95) == 0.0  # below the band
     assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.07, 0.95) == 0.0  # above it
     assert crouch.for_walk(WalkGoal.THROUGH, DoorOpening.PUSH, 1.03, 0.85) == 0.0  # a narrow door: upright

@@ -36,6 +36,7 @@ from door_fsm.parameters import NODE_NAME, SUPERVISOR_PARAMETERS
 from door_fsm.records import Instant
 from door_fsm.robot_commands import RobotCommands
 from door_fsm.supervisor import SupervisedRobot, Supervisor
+from door_robot.crouch import walking_height
 from door_robot.errors import RobotModelError
 from door_robot.profile import load_profile
 
@@ -132,8 +133,7 @@ class FsmSupervisorNode(Node):
             crouch = self.core.walk_crouch(action)
             self.pubs[Topics.WALK_CROUCH].publish(Float64(data=crouch))
             if crouch != 0.0:
-                self.get_logger().info(f"the walk {action.goal} goes {abs(crouch):.3f} m "
-                                       f"{'below' if crouch > 0.0 else 'above'} the standing height "
+                self.get_logger().info(f"the walk {action.goal} goes {walking_height(crouch)} "
                                        "(the profile's crouch for this door and walk)")
         kind, request = self.core.request(action)
         self.pubs[PLANNER_TOPICS[kind].request].publish(String(data=encode(request)))

@@ -20,7 +20,8 @@ from dataclasses import dataclass
 from door_contract.vocabulary import DoorOpening, WalkGoal
 from door_robot.errors import RobotModelError
 
-__all__ = ["MAX_CROUCH", "MAX_RISE", "CrouchRules", "LowLeverCrouch", "PassageCrouch", "crouch_problem"]
+__all__ = ["MAX_CROUCH", "MAX_RISE", "CrouchRules", "LowLeverCrouch", "PassageCrouch", "crouch_problem",
+           "walking_height"]
 
 MAX_CROUCH = 0.15
 """m the pelvis may go below its standing height in a walk: the most a profile may ask for and
@@ -39,6 +40,11 @@ def crouch_problem(crouch: object) -> str:
     if not -MAX_RISE <= crouch <= MAX_CROUCH:
         return f"crouch {crouch:.3f} m is outside [{-MAX_RISE}, {MAX_CROUCH}] m (negative: above the standing height)"
     return ""
+
+
+def walking_height(crouch: float) -> str:
+    """``crouch`` in words for a log line: "0.040 m above the standing height"."""
+    return f"{abs(crouch):.3f} m {'below' if crouch >= 0.0 else 'above'} the standing height"
 
 
 @dataclass(frozen=True)
@@ -171,4 +177,4 @@ class CrouchRules:
         passage = self.push_passage.for_walk(goal, opening, lever_height, width) if self.push_passage else 0.0
         low = self.low_lever.for_walk(goal, opening, lever_height) if self.low_lever else 0.0
         deepest = max(self.opening, passage, low)
-        return deepest if deepest > 0.0 else min(passage, 0.0)
+        return deepest if deepest > 0.0 else passage  # no rule crouches: the passage's rise, or 0
