@@ -6,7 +6,6 @@ This is the only module of the contract that imports rclpy at module level.
 from __future__ import annotations
 
 import difflib
-import faulthandler
 import math
 import signal
 import time
@@ -25,6 +24,7 @@ from door_contract.converters.diagnostics import Health, diagnostic_array
 from door_contract.errors import ParameterRangeError
 from door_contract.network import keep_discovery_local
 from door_contract.parameters import ParameterSpec, ParameterValue
+from door_contract.teardown_bound import TeardownBound, bounded_teardown
 from door_contract.topics import Topics, TopicSpec
 
 __all__ = ["Heartbeat", "NodeMain", "StopRequest", "as_parameter_error", "create_contract_publisher",
@@ -100,10 +100,6 @@ def as_parameter_error(what: str, *errors: type[Exception]) -> Iterator[None]:
         raise ParameterRangeError(f"{what}: {error}") from None
 
 
-SLOW_SHUTDOWN_S = 3.0
-"""Seconds after which a node's clean shutdown is reported as slow (with its stacks)."""
-
-
 class StopRequest:
     """SIGINT/SIGTERM handler: the first signal asks the spin loop to stop between callbacks.
 
@@ -127,13 +123,16 @@ class StopRequest:
 
 
 def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
-             poll_period_s: float = 0.1, drain_s: float = 0.0) -> int:
+             poll_period_s: float = 0.1, drain_s: float = 0.0,
+             teardown: TeardownBound | None = None) -> int:
     """The canonical rclpy main: init, build, spin until Ctrl-C/SIGTERM, clean shutdown.
 
     ``drain_s``: after the stop is asked for, go on taking what is already queued for this
     long before shutting down (a recorder stopped right after the graph it records still has
     the graph's last messages queued: a fall's outcome and the FAILED state were lost so).
     Returns the process exit code: 0 after a clean shutdown, 2 when a parameter is invalid.
+    The teardown (executor, node, context) runs under ``teardown`` (default
+    :class:`TeardownBound`'s): a middleware hang longer than its limit ends the process with SIGALRM (:mod:`door_contract.teardown_bound`).
     DDS discovery stays on this machine unless the environment says otherwise
     (:func:`~door_contract.network.keep_discovery_local`).
     """
@@ -157,13 +156,11 @@ def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
     except (KeyboardInterrupt, ExternalShutdownException):
         pass
     finally:
-        # a shutdown slower than this dumps every thread's stack to the log (diagnosis only)
-        faulthandler.dump_traceback_later(SLOW_SHUTDOWN_S, exit=False)
-        executor.shutdown(timeout_sec=1.0)
-        if node is not None:
-            node.destroy_node()
-        rclpy.try_shutdown()
-        faulthandler.cancel_dump_traceback_later()
+        with bounded_teardown(teardown or TeardownBound()):
+            executor.shutdown(timeout_sec=1.0)
+            if node is not None:
+                node.destroy_node()
+            rclpy.try_shutdown()
         for sig, handler in previous.items():
             signal.signal(sig, handler)
     return 0

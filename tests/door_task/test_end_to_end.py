@@ -14,6 +14,7 @@ from ros_helpers import executor_for, spin_until
 from door_bringup.bags.storage import read_messages
 from door_bringup.door_task import TaskOptions, run_task
 from door_bringup.graph_spec import GRAPH
+from door_bringup.processes import stopped_cleanly
 from door_contract.node_support import create_contract_subscription
 from door_contract.payloads import DoorEstimate, decode
 from door_contract.topics import Topics
@@ -71,7 +72,7 @@ def test_push_door_is_detected_approached_and_opened(push_run):
     states = [a["state"] for a in report["attempts"] if a["outcome"] == "succeeded"]
     for state in ("DETECT_DOOR", "WALK_TO_DOOR", "OPEN_DOOR/TURN_HANDLE", "OPEN_DOOR/PUSH", "OPEN_DOOR/READY_TO_WALK"):
         assert state in states
-    assert all(code == 0 for code in report["exit_codes"].values()), report["exit_codes"]
+    assert all(stopped_cleanly(code) for code in report["exit_codes"].values()), report["exit_codes"]
     approvals = [m.data for m in _messages(run_dir / "bag", Topics.APPROVAL_REQUEST) if m.data]
     assert any(text.startswith("DETECT_DOOR") for text in approvals)  # supervised: the operator was asked
     door = _messages(run_dir / "bag", Topics.DOOR_JOINT_STATES)
@@ -110,7 +111,7 @@ def test_pull_door_is_pulled_and_blocked(pull_run):
     for state in ("WALK_TO_DOOR", "OPEN_DOOR/PULL", "OPEN_DOOR/BLOCK", "OPEN_DOOR/READY_TO_WALK"):
         assert state in states
     assert "OPEN_DOOR/PUSH" not in states
-    assert all(code == 0 for code in report["exit_codes"].values()), report["exit_codes"]
+    assert all(stopped_cleanly(code) for code in report["exit_codes"].values()), report["exit_codes"]
 
 
 def test_pull_door_is_traversed(pull_run):

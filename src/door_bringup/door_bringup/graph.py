@@ -16,7 +16,7 @@ import rclpy
 from rclpy.node import Node
 
 from door_bringup.graph_spec import GRAPH
-from door_bringup.processes import ProcessSupervisor
+from door_bringup.processes import ProcessSupervisor, stopped_cleanly
 from door_bringup.workspace import Workspace, repository_root
 from door_contract.network import keep_discovery_local
 
@@ -57,7 +57,7 @@ def check_graph(workspace: Workspace, timeout_s: float, log_dir: Path | None) ->
         rclpy.try_shutdown()
     for name, code in codes.items():
         print(f"  /{name} exited with code {code}", flush=True)
-    return 0 if not missing and all(code == 0 for code in codes.values()) else 1
+    return 0 if not missing and all(stopped_cleanly(code) for code in codes.values()) else 1
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -2,7 +2,9 @@
 
 ROS-free: each node is a child process in its own session, so a Ctrl-C in the terminal
 reaches only this supervisor, which then stops the children in order: SIGINT (rclpy's
-clean shutdown), then SIGTERM, then SIGKILL after the grace periods.
+clean shutdown), then SIGTERM, then SIGKILL after the grace periods. A node whose middleware
+teardown hangs ends itself with SIGALRM before the first grace is over
+(:mod:`door_contract.teardown_bound`): :func:`stopped_cleanly` counts that as stopped on request.
 
 A SIGINT or SIGTERM that arrives while a child is being started is handled once the child is
 on the list :meth:`ProcessSupervisor.stop` signals (:func:`signals_deferred`): raised inside
@@ -27,8 +29,20 @@ from pathlib import Path
 from door_bringup.graph_spec import NodeLaunch
 from door_bringup.interrupts import signals_deferred
 from door_bringup.workspace import Workspace
+from door_contract.teardown_bound import TEARDOWN_ABANDONED
 
-__all__ = ["NodeProcess", "ProcessSupervisor"]
+__all__ = ["NodeProcess", "ProcessSupervisor", "stopped_cleanly", "teardown_abandoned"]
+
+
+def teardown_abandoned(exit_code: int) -> bool:
+    """Whether a node ended itself because its middleware teardown hung past its bound."""
+    return exit_code == -TEARDOWN_ABANDONED
+
+
+def stopped_cleanly(exit_code: int) -> bool:
+    """Whether a node stopped on request by itself: exit 0, or its hung teardown abandoned
+    (its work was done; the hang is Fast DDS's, :mod:`door_contract.teardown_bound`)."""
+    return exit_code == 0 or teardown_abandoned(exit_code)
 
 
 @dataclass
