@@ -161,7 +161,7 @@ def test_a_sigterm_to_the_monte_carlo_stops_every_graph_and_worker(workspace, tm
     stderr = tmp_path / "stderr.txt"
     with stderr.open("w") as sink:
         job = subprocess.Popen([sys.executable, "-m", "door_bringup.monte_carlo", "--trials", "2", "--jobs", "2",
-                                "--seed", "11"], env=workspace.environment(), stdout=subprocess.DEVNULL,
+                                "--seed", "11", "--runs-dir", str(tmp_path)], env=workspace.environment(), stdout=subprocess.DEVNULL,
                                stderr=sink)
     below: set[Process] = set()
     try:
@@ -172,6 +172,7 @@ def test_a_sigterm_to_the_monte_carlo_stops_every_graph_and_worker(workspace, tm
         assert _until(lambda: not _alive(below), 60.0), [_command(pid) for pid, _ in _alive(below)]  # none orphaned
         said = stderr.read_text()
         assert "interrupted (SIGTERM): 0 of 2 trials finished; --resume " in said and "Traceback" not in said
+        assert f"--resume {tmp_path}/monte_carlo_" in said  # the campaign's folder is where it was told
     finally:
         job.kill()
         for pid, _ in _alive(below):

@@ -137,30 +137,37 @@ def test_a_resumed_run_reads_its_finished_trials_and_runs_none_again(tmp_path):
         folder.mkdir()
         (folder / TRIAL_FILE).write_text(json.dumps(_report(opening, index == 0, 1.0, 0.5)))
     workspace = Workspace(tmp_path)  # a graph would need a built workspace: none is started
-    assert _run_folder(workspace, tmp_path, settings) == tmp_path
+    assert _run_folder(tmp_path / "runs", tmp_path, settings) == tmp_path
     reports = run_trials(trials, tmp_path, workspace, jobs=2)
     assert [r["final_state"] for r in reports] == ["DONE", "FAILED"]
+
+
+def test_a_new_campaign_gets_a_folder_of_its_own_under_the_runs_dir_with_its_settings(tmp_path):
+    settings = {"trials": 3, "seed": 7}
+    out = _run_folder(tmp_path / "runs", None, settings)
+    assert out.parent == tmp_path / "runs" and out.name.startswith("monte_carlo_")
+    assert json.loads((out / SETTINGS_FILE).read_text()) == settings
 
 
 def test_a_run_is_not_resumed_with_other_settings(tmp_path):
     (tmp_path / SETTINGS_FILE).write_text('{"trials": 50, "seed": 0}')
     with pytest.raises(ResumeError, match="seed"):
-        _run_folder(Workspace(tmp_path), tmp_path, {"trials": 50, "seed": 1})
+        _run_folder(tmp_path / "runs", tmp_path, {"trials": 50, "seed": 1})
     with pytest.raises(ResumeError, match="not a Monte-Carlo run folder"):
-        _run_folder(Workspace(tmp_path), tmp_path / "elsewhere", {"trials": 50, "seed": 0})
+        _run_folder(tmp_path / "runs", tmp_path / "elsewhere", {"trials": 50, "seed": 0})
 
 
 def test_a_campaign_resumed_with_more_trials_is_extended_by_the_seeds_next_doors(tmp_path):
     settings = {"trials": 3, "seed": 7, "autonomy": "full", "openings": ["pull", "push"]}
     (tmp_path / SETTINGS_FILE).write_text(json.dumps(settings))
-    assert _run_folder(Workspace(tmp_path), tmp_path, {**settings, "trials": 5}) == tmp_path
+    assert _run_folder(tmp_path / "runs", tmp_path, {**settings, "trials": 5}) == tmp_path
     assert json.loads((tmp_path / SETTINGS_FILE).read_text())["trials"] == 5  # resumed again with 5 from now on
     longer = draw_trials(np.random.default_rng(7), TaskOptions(), 5, ["push", "pull"])
     assert draw_trials(np.random.default_rng(7), TaskOptions(), 3, ["push", "pull"]) == longer[:3]
     with pytest.raises(ResumeError, match="campaign of 5 trials: resume it with --trials 5 or more, not 4"):
-        _run_folder(Workspace(tmp_path), tmp_path, {**settings, "trials": 4})
+        _run_folder(tmp_path / "runs", tmp_path, {**settings, "trials": 4})
     with pytest.raises(ResumeError, match="seed"):
-        _run_folder(Workspace(tmp_path), tmp_path, {**settings, "trials": 6, "seed": 8})
+        _run_folder(tmp_path / "runs", tmp_path, {**settings, "trials": 6, "seed": 8})
     assert json.loads((tmp_path / SETTINGS_FILE).read_text())["trials"] == 5  # a refused resume writes nothing
 
 
@@ -197,13 +204,13 @@ def test_a_run_is_not_resumed_with_another_robot(tmp_path, capsys):
 def test_a_folder_from_before_the_robot_option_resumes_as_talos_only(tmp_path):
     settings = {"trials": 2, "seed": 4}
     (tmp_path / SETTINGS_FILE).write_text(json.dumps(settings))  # no "robot": written before --robot
-    assert _run_folder(Workspace(tmp_path), tmp_path, {**settings, "robot": "talos"}) == tmp_path
+    assert _run_folder(tmp_path / "runs", tmp_path, {**settings, "robot": "talos"}) == tmp_path
     with pytest.raises(ResumeError, match=r"\(robot\)"):
-        _run_folder(Workspace(tmp_path), tmp_path, {**settings, "robot": "g1"})
+        _run_folder(tmp_path / "runs", tmp_path, {**settings, "robot": "g1"})
 
 
 def test_the_robot_is_in_the_settings_and_in_every_trial(tmp_path):
-    out = _run_folder(Workspace(tmp_path), None, {"robot": "g1", "trials": 1})
+    out = _run_folder(tmp_path / "runs", None, {"robot": "g1", "trials": 1})
     assert json.loads((out / SETTINGS_FILE).read_text())["robot"] == "g1"
     trials = draw_trials(np.random.default_rng(1), TaskOptions(robot="g1"), 3, ["push", "pull"])
     assert {trial.robot for trial in trials} == {"g1"}
@@ -214,9 +221,9 @@ def test_a_folder_from_before_the_standing_camera_rate_resumes_only_with_the_one
     settings = json.loads((tmp_path / SETTINGS_FILE).read_text())
     del settings["camera_rate_standing"]  # written before it: the camera ran at camera_rate throughout
     (tmp_path / SETTINGS_FILE).write_text(json.dumps(settings))
-    assert _run_folder(Workspace(tmp_path), tmp_path, {**settings, "camera_rate_standing": 0.0}) == tmp_path
+    assert _run_folder(tmp_path / "runs", tmp_path, {**settings, "camera_rate_standing": 0.0}) == tmp_path
     with pytest.raises(ResumeError, match=r"\(camera_rate_standing\)"):
-        _run_folder(Workspace(tmp_path), tmp_path, {**settings, "camera_rate_standing": 8.0})
+        _run_folder(tmp_path / "runs", tmp_path, {**settings, "camera_rate_standing": 8.0})
 
 
 def test_the_camera_rates_reach_the_sim_bridge():

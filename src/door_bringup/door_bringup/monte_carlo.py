@@ -81,6 +81,8 @@ def main(argv: list[str] | None = None) -> int:
                         help="full: issue #13's (start 1-4 m, +-0.6 m, +-0.6 rad; doors 0.80-1.00 m, lever "
                              "0.85-1.10 m, wind <= 3 N m, depth noise <= 0.005, random colours); narrow: the "
                              "earlier campaigns' (door_bringup.trial_ranges)")
+    parser.add_argument("--runs-dir", type=Path, metavar="DIR", default=None,
+                        help="where a new campaign's folder monte_carlo_<stamp> is made (default: the checkout's runs/)")
     parser.add_argument("--resume", type=Path, metavar="RUN_DIR",
                         help="a monte_carlo_<stamp> folder: its finished trials are read, the rest run")
     args = parser.parse_args(argv)
@@ -93,7 +95,7 @@ def main(argv: list[str] | None = None) -> int:
                 "camera_rate": args.camera_rate, "camera_rate_standing": args.camera_rate_standing, "openings": sorted(args.openings), "timeout": args.timeout,
                 "ranges": args.ranges}
     try:
-        out = _run_folder(workspace, args.resume, settings)
+        out = _run_folder(args.runs_dir or workspace.root / "runs", args.resume, settings)
     except ResumeError as error:
         parser.error(str(error))
     base = TaskOptions(robot=args.robot, autonomy=args.autonomy, timeout_s=args.timeout, record=False,
@@ -126,12 +128,12 @@ def draw_trials(rng: np.random.Generator, base: TaskOptions, count: int, opening
     return trials
 
 
-def _run_folder(workspace: Workspace, resume: Path | None, settings: dict) -> Path:
-    """A new ``runs/monte_carlo_<stamp>``, or the folder to resume: the same settings but
+def _run_folder(runs_dir: Path, resume: Path | None, settings: dict) -> Path:
+    """A new ``<runs_dir>/monte_carlo_<stamp>``, or the folder to resume: the same settings but
     ``trials``, which may grow (the campaign is extended: a seed draws its doors in order, so
     its first doors are the ones already run); else ResumeError."""
     if resume is None:
-        out = workspace.root / "runs" / f"monte_carlo_{datetime.now(UTC).strftime('%Y%m%dT%H%M%SZ')}"
+        out = runs_dir / f"monte_carlo_{datetime.now(UTC).strftime('%Y%m%dT%H%M%SZ')}"
         out.mkdir(parents=True, exist_ok=True)
         (out / SETTINGS_FILE).write_text(json.dumps(settings, indent=2))
         return out
