@@ -131,8 +131,9 @@ def run_node(node_factory: Callable[[], Node], args: list[str] | None = None,
     long before shutting down (a recorder stopped right after the graph it records still has
     the graph's last messages queued: a fall's outcome and the FAILED state were lost so).
     Returns the process exit code: 0 after a clean shutdown, 2 when a parameter is invalid.
-    The teardown (executor, node, context) runs under ``teardown`` (default
-    :class:`TeardownBound`'s): a middleware hang longer than its limit ends the process with SIGALRM (:mod:`door_contract.teardown_bound`).
+    The teardown (executor, node, context) runs under ``teardown`` (default: a
+    :class:`TeardownBound`'s): a middleware hang longer than its limit ends the process with
+    SIGALRM (:mod:`door_contract.teardown_bound`).
     DDS discovery stays on this machine unless the environment says otherwise
     (:func:`~door_contract.network.keep_discovery_local`).
     """
