@@ -8,7 +8,8 @@ simultaneous start/stop). The lock is never released: the node ran on after its 
 until the graph's supervisor SIGKILLed it, and a ``ros2 run`` stopped with Ctrl-C would hang
 for good.
 
-A hung middleware call holds the GIL, so no Python timer can end it. The bound is kept by the
+A hung middleware call holds the GIL (rclpy's ``destroy_when_not_in_use`` does not release it),
+so no Python timer or waiting thread can end it. The bound is kept by the
 kernel instead: :func:`bounded_teardown` arms ``ITIMER_REAL`` with SIGALRM's *default* action
 (terminate the process), and faulthandler's own C thread dumps every thread's stack to stderr
 (the node's log) first. A process ended so reports ``-SIGALRM`` to :mod:`subprocess`

@@ -1,6 +1,8 @@
 """The Monte-Carlo's sampling, resuming and printed summary, on synthetic reports (no graph)."""
 
 import json
+import os
+import signal
 
 import numpy as np
 import pytest
@@ -10,6 +12,7 @@ from door_bringup.monte_carlo import (
     SETTINGS_FILE,
     TRIAL_FILE,
     ResumeError,
+    WorkerLost,
     _run_folder,
     door_classes_line,
     draw_trials,
@@ -147,6 +150,20 @@ def test_a_new_campaign_gets_a_folder_of_its_own_under_the_runs_dir_with_its_set
     out = _run_folder(tmp_path / "runs", None, settings)
     assert out.parent == tmp_path / "runs" and out.name.startswith("monte_carlo_")
     assert json.loads((out / SETTINGS_FILE).read_text()) == settings
+
+
+def _worker_ended_by_its_teardown_bound(options, trial_dir, workspace):
+    """A worker whose operator teardown hung: the kernel's alarm ends it (door_task.OPERATOR_TEARDOWN)."""
+    os.kill(os.getpid(), signal.SIGALRM)
+
+
+def test_a_worker_that_dies_stops_the_campaign_with_worker_lost_not_a_hang(tmp_path):
+    """Stop 38: a worker hung 90 min in its operator's teardown and the pool waited for it; the
+    teardown now ends the worker, and the campaign stops, resumable, instead of waiting."""
+    trials = draw_trials(np.random.default_rng(4), TaskOptions(), 2, ["push", "pull"])
+    with pytest.raises(WorkerLost, match="worker died"):
+        run_trials(trials, tmp_path, Workspace(tmp_path), jobs=2, worker=_worker_ended_by_its_teardown_bound)
+    assert not list(tmp_path.glob("trial_*/trial.json"))  # nothing is counted as run: --resume runs both
 
 
 def test_a_run_is_not_resumed_with_other_settings(tmp_path):

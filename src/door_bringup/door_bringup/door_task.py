@@ -45,13 +45,13 @@ from door_bringup.progress_monitor import ProgressMonitor
 from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.run_plots import plot_run
 from door_bringup.table_one import format_table, phase_rows, state_attempts
-from door_bringup.teardown import TEARDOWN_S, finishes_within
 from door_bringup.workspace import Workspace, repository_root
 from door_contract.converters.diagnostics import status_values
 from door_contract.network import keep_discovery_local
 from door_contract.node_support import create_contract_publisher, create_contract_subscription
 from door_contract.payloads import TaskReport, decode, encode_document
 from door_contract.stamps import stamp_ns
+from door_contract.teardown_bound import TeardownBound, bounded_teardown
 from door_contract.topics import Topics
 from door_contract.vocabulary import TaskEnd
 from door_fsm.answer_retry import AnswerRetry
@@ -205,13 +205,20 @@ class ScriptedOperator(Node):
         self.progress.odom(msg)
 
 
+OPERATOR_TEARDOWN = TeardownBound(stacks_after_s=10.0, limit_s=30.0)
+"""The scripted operator node's teardown, in this process: a Fast DDS deadlock destroying it
+(stop 38: a Monte-Carlo worker hung 90 min in ``Publisher.destroy``) holds the GIL, so no thread
+can wait it out; the kernel's alarm ends the process instead (:mod:`door_contract.teardown_bound`)."""
+
+
 def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
-    """Run the task once; returns the report as a dict (final_state FAILED when it never ended)."""
+    """Run the task once; returns the report as a dict (final_state FAILED when it never ended).
+    Call it from the main thread (the operator's teardown is bounded by a signal)."""
     supervisor = ProcessSupervisor(workspace, run_dir / "logs")
     recorder = ProcessSupervisor(workspace, run_dir / "logs")  # stopped after the graph: the bag ends with DONE
     overrides = options.node_overrides()
     keep_discovery_local()  # the scripted operator's participant
-    context = rclpy.Context()  # the run's own: a teardown left hanging does not hold the next run's
+    context = rclpy.Context()  # the run's own
     rclpy.init(context=context)
     operator = ScriptedOperator(options.operator == "auto", context)
     started = time.monotonic()
@@ -232,13 +239,9 @@ def run_task(options: TaskOptions, run_dir: Path, workspace: Workspace) -> dict:
         with signals_deferred():  # a second stop waits: the recorder is stopped too
             operator.progress.printer.interrupt()
             codes = {**supervisor.stop(), **recorder.stop()}
-        released = finishes_within(operator.release, TEARDOWN_S)
-        if not released:
-            print(f"warning: the operator node's teardown did not finish within {TEARDOWN_S:g} s "
-                  "(a DDS hang destroying a publisher); left behind", flush=True)
+        with bounded_teardown(OPERATOR_TEARDOWN):
+            operator.release()
     report["wall_time_s"] = round(time.monotonic() - started, 2)
-    if not released:
-        report["teardown_hung"] = True
     report["final_base_xy"] = operator.base_xy
     report["exit_codes"] = codes
     abandoned = _abandoned_teardowns(codes)

@@ -28,7 +28,9 @@ import statistics
 import sys
 import time
 from collections import Counter
+from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures.process import BrokenProcessPool
 from dataclasses import asdict
 from datetime import UTC, datetime
 from pathlib import Path
@@ -105,10 +107,11 @@ def main(argv: list[str] | None = None) -> int:
     try:
         reports = run_trials(trials, out, workspace, args.jobs)
     except KeyboardInterrupt as signal_name:  # every graph is stopped; finished trials are on disk
-        finished = sum(1 for path in out.glob(f"trial_*/{TRIAL_FILE}"))
-        print(f"\ninterrupted ({signal_name or 'SIGINT'}): {finished} of {len(trials)} trials finished; "
-              f"--resume {out} runs the rest", file=sys.stderr)
+        _say_stopped(f"interrupted ({signal_name or 'SIGINT'})", out, len(trials))
         return INTERRUPTED
+    except WorkerLost as error:
+        _say_stopped(str(error), out, len(trials))
+        return 1
     text = f"Robot: {args.robot}\n\n" + summary(reports)
     print(text)
     (out / "summary.md").write_text(text)
@@ -159,6 +162,18 @@ class ResumeError(Exception):
     """A folder that cannot be resumed with these settings."""
 
 
+class WorkerLost(Exception):
+    """A pool worker ended without returning its trial: killed, or ended by its own teardown
+    bound (:data:`door_bringup.door_task.OPERATOR_TEARDOWN`: a Fast DDS deadlock destroying the
+    scripted operator); the pool is broken, its other trials are stopped."""
+
+
+def _say_stopped(why: str, out: Path, trials: int) -> None:
+    """One line on stderr: why the campaign stopped, how far it got, how to go on."""
+    finished = sum(1 for _ in out.glob(f"trial_*/{TRIAL_FILE}"))
+    print(f"\n{why}: {finished} of {trials} trials finished; --resume {out} runs the rest", file=sys.stderr)
+
+
 SETTINGS_FILE = "monte_carlo.json"
 RECORDED_BEFORE = {"robot": "talos", "ranges": RangeSet.NARROW.value, "camera_rate_standing": 0.0}
 """What a setting a folder does not record was: folders written before ``--robot`` ran TALOS,
@@ -167,9 +182,11 @@ throughout (the sim bridge's 0: resumed with ``--camera-rate-standing 0``)."""
 TRIAL_FILE = "trial.json"
 
 
-def run_trials(trials: list[TaskOptions], out: Path, workspace: Workspace, jobs: int) -> list[dict]:
+def run_trials(trials: list[TaskOptions], out: Path, workspace: Workspace, jobs: int,
+               worker: Callable[[TaskOptions, Path, Workspace], dict] | None = None) -> list[dict]:
     """Every trial's report, in order: read where ``trial_<n>/trial.json`` exists, run otherwise
-    (``jobs`` at a time, each in its own ROS domain), with a progress bar."""
+    (``jobs`` at a time, each in its own ROS domain, by ``worker``: default :func:`_run_in_worker`),
+    with a progress bar. Raises :class:`WorkerLost` when a pool worker dies."""
     reports: dict[int, dict] = {}
     for index in range(len(trials)):
         done = out / f"trial_{index:03d}" / TRIAL_FILE
@@ -192,19 +209,27 @@ def run_trials(trials: list[TaskOptions], out: Path, workspace: Workspace, jobs:
         first = int(os.environ.get("ROS_DOMAIN_ID", "0") or 0) + 1  # the campaign's own stays free
         with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
                                  initializer=_take_domain, initargs=(first,)) as pool:
-            futures = {pool.submit(_run_in_worker, trials[index], out / f"trial_{index:03d}", workspace): index
+            futures = {pool.submit(worker or _run_in_worker, trials[index], out / f"trial_{index:03d}", workspace): index
                        for index in pending}
             try:
                 for future in as_completed(futures):
                     finished(futures[future], future.result())
             except KeyboardInterrupt:  # Ctrl-C or SIGTERM: each worker stops its graph, no trial is started
-                pool.shutdown(wait=False, cancel_futures=True)
-                for worker in multiprocessing.active_children():
-                    if worker.pid is not None:
-                        os.kill(worker.pid, signal.SIGTERM)
+                _stop_workers(pool)
                 raise
+            except BrokenProcessPool:
+                _stop_workers(pool)
+                raise WorkerLost("a Monte-Carlo worker died (killed, or its operator node's teardown hung: its stacks are above)") from None
     print(file=sys.stderr)
     return [reports[index] for index in range(len(trials))]
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """No trial is started any more; each running worker stops its graph (SIGTERM)."""
+    pool.shutdown(wait=False, cancel_futures=True)
+    for child in multiprocessing.active_children():
+        if child.pid is not None:
+            os.kill(child.pid, signal.SIGTERM)
 
 
 def _take_domain(first: int) -> None:
