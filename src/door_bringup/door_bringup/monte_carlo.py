@@ -47,7 +47,7 @@ from door_bringup.workspace import Workspace, repository_root
 from door_contract.payloads import StateAttempt
 from door_contract.vocabulary import AttemptOutcome, TaskEnd, TaskState
 
-__all__ = ["RECORDED_BEFORE", "SETTINGS_FILE", "TRIAL_FILE", "ResumeError", "door_classes_line", "draw_trials",
+__all__ = ["RECORDED_BEFORE", "SETTINGS_FILE", "TRIAL_FILE", "ResumeError", "WorkerLost", "door_classes_line", "draw_trials",
            "falls_line", "main", "overhead_line", "run_trials", "sample_trial", "summary", "wall_time_line"]
 
 
