@@ -8,7 +8,10 @@ As rosbag2 does (Jazzy's ``ros2 bag record`` / ``play``):
 * the player publishes a topic with the recorded reliability and durability when all the
   recorded offers agree (a latched ``/door_task/state`` stays latched: a late subscriber still
   gets the last state), else reliable and volatile. Depth: the recorded depth for transient
-  local topics (what a late joiner receives), at least 100 otherwise (fast playback).
+  local topics (what a late joiner receives), at least 100 otherwise (fast playback) and where
+  the recording did not know it (depth 0: the real talker bags' ``/rosout``, transient local,
+  was replayed at depth 1, and at 20× rate a loaded machine overwrote a line before it was
+  acknowledged: stop 43's CI).
 
 Values are rosbags' ``Qos`` tuples, whose enum values are rmw's, like rclpy's policies.
 """
@@ -48,8 +51,9 @@ def playback_profile(offers: Sequence[Qos], fallback: QoSProfile) -> QoSProfile:
     agree = len(reliabilities) == 1 and len(durabilities) == 1
     reliable = not agree or QosReliability.BEST_EFFORT not in reliabilities
     latched = agree and QosDurability.TRANSIENT_LOCAL in durabilities
-    depth = max(o.depth for o in offers) if latched else max(VOLATILE_DEPTH, *(o.depth for o in offers))
-    return QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=max(depth, 1),
+    recorded_depth = max(o.depth for o in offers)
+    depth = recorded_depth if latched and recorded_depth > 0 else max(VOLATILE_DEPTH, recorded_depth)
+    return QoSProfile(history=HistoryPolicy.KEEP_LAST, depth=depth,
                       reliability=ReliabilityPolicy.RELIABLE if reliable else ReliabilityPolicy.BEST_EFFORT,
                       durability=DurabilityPolicy.TRANSIENT_LOCAL if latched else DurabilityPolicy.VOLATILE,
                       liveliness=LivelinessPolicy.AUTOMATIC)
