@@ -40,7 +40,7 @@ from door_bringup.domains import DomainsExhausted, lease_wanted_domain
 from door_bringup.graph_spec import FOXGLOVE_BRIDGE, GRAPH, NodeLaunch
 from door_bringup.interrupts import INTERRUPTED, interrupt_on_sigterm, signals_deferred
 from door_bringup.params_files import ROBOT_PARAMETER, robot_nodes
-from door_bringup.processes import ProcessSupervisor, teardown_abandoned
+from door_bringup.processes import ABANDONED_TEARDOWN_NOTE, ProcessSupervisor, teardown_abandoned
 from door_bringup.progress_monitor import ProgressMonitor
 from door_bringup.robot_option import add_robot_argument, check_robot
 from door_bringup.run_plots import plot_run
@@ -254,8 +254,7 @@ def _abandoned_teardowns(codes: dict[str, int]) -> list[str]:
     """The nodes that ended themselves in a hung middleware teardown, each warned about."""
     abandoned = sorted(name for name, code in codes.items() if teardown_abandoned(code))
     for name in abandoned:
-        print(f"warning: /{name}'s middleware teardown hung and was abandoned at its bound "
-              "(a Fast DDS deadlock; its stacks are in its log)", flush=True)
+        print(f"warning: /{name}: {ABANDONED_TEARDOWN_NOTE}", flush=True)
     return abandoned
 
 

@@ -16,7 +16,7 @@ import rclpy
 from rclpy.node import Node
 
 from door_bringup.graph_spec import GRAPH
-from door_bringup.processes import ProcessSupervisor, stopped_cleanly, teardown_abandoned
+from door_bringup.processes import ABANDONED_TEARDOWN_NOTE, ProcessSupervisor, stopped_cleanly, teardown_abandoned
 from door_bringup.workspace import Workspace, repository_root
 from door_contract.network import keep_discovery_local
 
@@ -56,7 +56,7 @@ def check_graph(workspace: Workspace, timeout_s: float, log_dir: Path | None) ->
         probe.destroy_node()
         rclpy.try_shutdown()
     for name, code in codes.items():
-        hung = " (its middleware teardown hung: abandoned at its bound, stacks in its log)" if teardown_abandoned(code) else ""
+        hung = f" ({ABANDONED_TEARDOWN_NOTE})" if teardown_abandoned(code) else ""
         print(f"  /{name} exited with code {code}{hung}", flush=True)
     return 0 if not missing and all(stopped_cleanly(code) for code in codes.values()) else 1
 

@@ -31,7 +31,11 @@ from door_bringup.interrupts import signals_deferred
 from door_bringup.workspace import Workspace
 from door_contract.teardown_bound import TEARDOWN_ABANDONED
 
-__all__ = ["NodeProcess", "ProcessSupervisor", "stopped_cleanly", "teardown_abandoned"]
+__all__ = ["ABANDONED_TEARDOWN_NOTE", "NodeProcess", "ProcessSupervisor", "stopped_cleanly", "teardown_abandoned"]
+
+ABANDONED_TEARDOWN_NOTE = ("its middleware teardown hung and was abandoned at its bound "
+                           "(a Fast DDS deadlock; its stacks are in its log)")
+"""What to tell a user about a node whose exit code says :func:`teardown_abandoned`."""
 
 
 def teardown_abandoned(exit_code: int) -> bool:
