@@ -218,6 +218,16 @@ def test_a_run_is_not_resumed_with_another_robot(tmp_path, capsys):
     assert not list(tmp_path.glob("trial_*"))
 
 
+def test_a_runs_dir_that_is_a_file_is_refused_in_one_line(tmp_path, capsys):
+    not_a_folder = tmp_path / "runs"
+    not_a_folder.write_text("")
+    with pytest.raises(SystemExit) as stop:
+        main(["--trials", "1", "--runs-dir", str(not_a_folder)])
+    assert stop.value.code == 2
+    said = capsys.readouterr().err
+    assert "--runs-dir: cannot make the campaign's folder" in said and "Traceback" not in said
+
+
 def test_a_folder_from_before_the_robot_option_resumes_as_talos_only(tmp_path):
     settings = {"trials": 2, "seed": 4}
     (tmp_path / SETTINGS_FILE).write_text(json.dumps(settings))  # no "robot": written before --robot

@@ -100,6 +100,8 @@ def main(argv: list[str] | None = None) -> int:
         out = _run_folder(args.runs_dir or workspace.root / "runs", args.resume, settings)
     except ResumeError as error:
         parser.error(str(error))
+    except OSError as error:  # --runs-dir names a file, or a folder that cannot be written
+        parser.error(f"--runs-dir: cannot make the campaign's folder: {error}")
     base = TaskOptions(robot=args.robot, autonomy=args.autonomy, timeout_s=args.timeout, record=False,
                        camera_rate=args.camera_rate, camera_rate_standing=args.camera_rate_standing)
     trials = draw_trials(np.random.default_rng(args.seed), base, args.trials, args.openings,
