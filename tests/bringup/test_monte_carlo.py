@@ -157,12 +157,14 @@ def _worker_ended_by_its_teardown_bound(options, trial_dir, workspace):
     os.kill(os.getpid(), signal.SIGALRM)
 
 
-def test_a_worker_that_dies_stops_the_campaign_with_worker_lost_not_a_hang(tmp_path):
+@pytest.mark.parametrize("jobs", [1, 2])
+def test_a_worker_that_dies_stops_the_campaign_with_worker_lost_not_a_hang(tmp_path, jobs):
     """Stop 38: a worker hung 90 min in its operator's teardown and the pool waited for it; the
-    teardown now ends the worker, and the campaign stops, resumable, instead of waiting."""
+    teardown now ends the worker, and the campaign stops, resumable, instead of waiting. With
+    one job too: the trial runs in a worker, so the alarm does not end the campaign itself."""
     trials = draw_trials(np.random.default_rng(4), TaskOptions(), 2, ["push", "pull"])
     with pytest.raises(WorkerLost, match="worker died"):
-        run_trials(trials, tmp_path, Workspace(tmp_path), jobs=2, worker=_worker_ended_by_its_teardown_bound)
+        run_trials(trials, tmp_path, Workspace(tmp_path), jobs=jobs, worker=_worker_ended_by_its_teardown_bound)
     assert not list(tmp_path.glob("trial_*/trial.json"))  # nothing is counted as run: --resume runs both
 
 

@@ -188,7 +188,13 @@ def run_trials(trials: list[TaskOptions], out: Path, workspace: Workspace, jobs:
                worker: Callable[[TaskOptions, Path, Workspace], dict] | None = None) -> list[dict]:
     """Every trial's report, in order: read where ``trial_<n>/trial.json`` exists, run otherwise
     (``jobs`` at a time, each in its own ROS domain, by ``worker``: default :func:`_run_in_worker`),
-    with a progress bar. Raises :class:`WorkerLost` when a pool worker dies."""
+    with a progress bar. Raises :class:`WorkerLost` when a pool worker dies.
+
+    Every trial runs in a pool worker, with ``jobs`` 1 too: a trial's scripted operator node
+    (DDS in the main job's own process) that hangs in its teardown ends its process by the
+    kernel's alarm (:data:`door_bringup.door_task.OPERATOR_TEARDOWN`); in a worker that is
+    :class:`WorkerLost` and a resumable campaign, where in the campaign's own process it ended
+    the campaign without a word (stop 43)."""
     reports: dict[int, dict] = {}
     for index in range(len(trials)):
         done = out / f"trial_{index:03d}" / TRIAL_FILE
@@ -204,24 +210,20 @@ def run_trials(trials: list[TaskOptions], out: Path, workspace: Workspace, jobs:
         successes = sum(r["final_state"] == TaskEnd.DONE for r in reports.values())
         print(progress(len(reports), len(trials), successes, started), end="", file=sys.stderr, flush=True)
 
-    if jobs == 1:
-        for index in pending:
-            finished(index, run_trial(trials[index], out / f"trial_{index:03d}", workspace))
-    else:
-        first = int(os.environ.get("ROS_DOMAIN_ID", "0") or 0) + 1  # the campaign's own stays free
-        with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
-                                 initializer=_take_domain, initargs=(first,)) as pool:
-            futures = {pool.submit(worker or _run_in_worker, trials[index], out / f"trial_{index:03d}", workspace): index
-                       for index in pending}
-            try:
-                for future in as_completed(futures):
-                    finished(futures[future], future.result())
-            except KeyboardInterrupt:  # Ctrl-C or SIGTERM: each worker stops its graph, no trial is started
-                _stop_workers(pool)
-                raise
-            except BrokenProcessPool:
-                _stop_workers(pool)
-                raise WorkerLost("a Monte-Carlo worker died (killed, or its operator node's teardown hung: its stacks are above)") from None
+    first = int(os.environ.get("ROS_DOMAIN_ID", "0") or 0) + 1  # the campaign's own stays free
+    with ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
+                             initializer=_take_domain, initargs=(first,)) as pool:
+        futures = {pool.submit(worker or _run_in_worker, trials[index], out / f"trial_{index:03d}", workspace): index
+                   for index in pending}
+        try:
+            for future in as_completed(futures):
+                finished(futures[future], future.result())
+        except KeyboardInterrupt:  # Ctrl-C or SIGTERM: each worker stops its graph, no trial is started
+            _stop_workers(pool)
+            raise
+        except BrokenProcessPool:
+            _stop_workers(pool)
+            raise WorkerLost("a Monte-Carlo worker died (killed, or its operator node's teardown hung: its stacks are above)") from None
     print(file=sys.stderr)
     return [reports[index] for index in range(len(trials))]
 
