@@ -46,6 +46,7 @@ class OutcomeStatus(str, Enum):
     FAILURE = "failure"
     REJECTED = "rejected"  # refused before doing anything (bad input); nothing moved
     SUPERSEDED = "superseded"  # planning only: a newer request or a cancel replaced it; nothing proposed
+    SKIPPED = "skipped"  # planning only: nothing to do for this door (a narrow push door's doorway walk); nothing proposed
     STOPPED = "stopped"  # execution only: stopped on command (empty message, lost supervisor); the robot holds
     FELL = "fell"  # execution only: the robot fell; it stays down, the task cannot go on
 

@@ -73,8 +73,10 @@ class WalkGoal(StrEnum):
     STAND = "stand"
     """The stand pose in front of the door, from which the arm opens it."""
     DOORWAY = "doorway"
-    """A pull door: along the wall and sideways into the doorway, the blocking hand on the
-    leaf, to where that arm tucks before the door plane."""
+    """Into the doorway, to where the arm on the leaf tucks: a pull door's along the wall and
+    sideways, the blocking hand on the leaf, to before the door plane; a wide push door's
+    side-steps, the pushing hand on the leaf, to just past it. A door walked through in one
+    go has none: its planner answers SKIPPED."""
     THROUGH = "through"
     """Through the open doorway, past the door plane (a pull door: on from the doorway)."""
 
@@ -89,12 +91,13 @@ class Motion(StrEnum):
     BLOCK_DOOR = "block_door"
     READY_TO_WALK = "ready_to_walk"
     TUCK_ARM = "tuck_arm"
-    """A pull door's blocking arm to the walking posture, in the doorway."""
+    """The arm on the leaf to the walking posture, in the doorway: a pull door's blocking arm,
+    a push door's pushing arm."""
 
-    @property
-    def uses_other_arm(self) -> bool:
-        """The blocking arm moves (the other one opened the door)."""
-        return self in (Motion.BLOCK_DOOR, Motion.TUCK_ARM)
+    def moves_other_arm(self, opening: DoorOpening) -> bool:
+        """Whether the arm that did not open the door moves: a pull door's blocking arm
+        (blocking, tucking); a push door's tuck moves the arm that pushed it."""
+        return self is Motion.BLOCK_DOOR or (self is Motion.TUCK_ARM and opening is DoorOpening.PULL)
 
     @property
     def holds_handle(self) -> bool:
@@ -145,7 +148,8 @@ class TaskState(Enum):
     DETECT_DOOR → WALK_TO_DOOR → OPEN_DOOR [MOVE_TO_HANDLE → GRASP → TURN_HANDLE → PUSH or PULL
     → BLOCK (pull doors) → READY_TO_WALK] → WALK_THROUGH → DONE, plus PAUSED, MANUAL and FAILED.
     A pull door's WALK_THROUGH walks in two parts around an arm motion: [TO_DOORWAY → TUCK] →
-    WALK_THROUGH (:mod:`footstep_planner.pull_passage` says why).
+    WALK_THROUGH (:mod:`footstep_planner.pull_passage` says why), and so does a wide push door's
+    (:mod:`footstep_planner.push_passage`); a narrow push door skips TO_DOORWAY and TUCK.
 
     Not a StrEnum: its spelling on the bus and in reports is the label, not the value, and a
     state that compared equal to ``"TURN_HANDLE"`` but not to ``"OPEN_DOOR/TURN_HANDLE"`` would
@@ -233,4 +237,5 @@ class AttemptOutcome(StrEnum):
     TIMEOUT = "timeout"
     ABORTED = "aborted"
     FELL = "fell"
+    SKIPPED = "skipped"
     UNFINISHED = "unfinished"

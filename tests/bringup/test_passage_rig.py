@@ -16,7 +16,8 @@ from door_bringup.passage_rig import (
     perfect_estimate,
     stand_world,
 )
-from door_contract.vocabulary import DoorOpening, HingeSide, Motion, WalkGoal, grasp_hand
+from door_contract.vocabulary import DoorOpening, HingeSide, Motion, TaskState, WalkGoal, grasp_hand
+from door_fsm.work import STATE_WORK
 from door_sim_bridge.world import ContactSolver, DoorConfig
 
 
@@ -27,9 +28,13 @@ def test_the_doors_are_opened_in_the_fsms_order():
     assert pull[3:5] == (Motion.PULL_DOOR, Motion.BLOCK_DOOR)  # the other hand blocks before the release
 
 
-def test_the_doors_are_walked_through_in_the_fsms_order():
-    assert passage_steps(DoorOpening.PUSH) == (WalkGoal.THROUGH,)
-    assert passage_steps(DoorOpening.PULL) == (WalkGoal.DOORWAY, Motion.TUCK_ARM, WalkGoal.THROUGH)
+@pytest.mark.parametrize("opening", list(DoorOpening))
+def test_the_doors_are_walked_through_in_the_fsms_order(opening):
+    """To the doorway, the tuck, on through; a door without a doorway walk (a narrow push door)
+    skips to WALK_THROUGH, as the FSM's wiring does."""
+    assert passage_steps(opening) == ((TaskState.TO_DOORWAY, WalkGoal.DOORWAY), (TaskState.TUCK, Motion.TUCK_ARM),
+                                      (TaskState.WALK_THROUGH, WalkGoal.THROUGH))
+    assert STATE_WORK[TaskState.TO_DOORWAY].skip_to is TaskState.WALK_THROUGH
 
 
 def test_a_run_says_where_it_ended_and_what_struck_hardest():

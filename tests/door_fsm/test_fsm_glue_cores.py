@@ -5,11 +5,11 @@ from geometry_msgs.msg import PoseStamped
 from nav_msgs.msg import Path
 from trajectory_msgs.msg import JointTrajectory, JointTrajectoryPoint
 
-from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus
+from door_contract.payloads import ExecutionKind, ExecutionOutcome, OutcomeStatus, PlanningOutcome
 from door_contract.vocabulary import DoorOpening
 from door_fsm import actions as act
 from door_fsm import events as ev
-from door_fsm.answers import execution_event
+from door_fsm.answers import execution_event, planning_event
 from door_fsm.door_context import DoorContext
 from door_fsm.graph_watch import GraphWatch
 from door_fsm.summaries import work_of
@@ -33,6 +33,15 @@ def test_execution_answers_become_events():
     assert not stopped.succeeded and not stopped.fell and "stopped: dead-man" in stopped.reason
     slip = execution_event(ExecutionOutcome(ExecutionKind.TRAJECTORY, 5, OutcomeStatus.FAILURE, "slip", slipped=True), 9)
     assert isinstance(slip, ev.HandSlipped)
+
+
+def test_planning_answers_become_events_a_skip_its_own():
+    """A planner's SKIPPED (a narrow push door's doorway walk) is a skip with its reason, not a
+    failure; any other status but success is a failure naming the status."""
+    skipped = PlanningOutcome(4, OutcomeStatus.SKIPPED, "0.84 m wide: no doorway walk")
+    assert planning_event(skipped) == ev.ProposalSkipped(4, "0.84 m wide: no doorway walk")
+    rejected = PlanningOutcome(5, OutcomeStatus.REJECTED, "no valid odometry yet")
+    assert planning_event(rejected) == ev.ProposalFailed(5, "rejected: no valid odometry yet")
 
 
 def test_the_work_of_a_proposal():

@@ -26,10 +26,11 @@ def say(machine, command, request_id=None, now=10.0):
 
 
 class Robot:
-    """Answers every request of the machine successfully; approves when asked."""
+    """Answers every request of the machine successfully, or the walks to ``skip`` SKIPPED
+    (a narrow push door's doorway walk); approves when asked."""
 
-    def __init__(self, machine: DoorTaskMachine, approve: bool = True):
-        self.machine, self.approve, self.now = machine, approve, 0.0
+    def __init__(self, machine: DoorTaskMachine, approve: bool = True, skip: frozenset[WalkGoal] = frozenset()):
+        self.machine, self.approve, self.now, self.skip = machine, approve, 0.0, skip
         self.requests: list = []
         self.approvals: list[str] = []
         self.visited: list[TaskState] = []
@@ -49,6 +50,8 @@ class Robot:
             self.visited.append(m.state)
         if isinstance(action, (act.RequestDetection, act.RequestFootsteps, act.RequestMotion)):
             self.requests.append(action)
+            if isinstance(action, act.RequestFootsteps) and action.goal in self.skip:
+                return m.handle(ev.ProposalSkipped(action.request_id, "no such walk here"), t(self.now))
             return m.handle(ev.ProposalReady(action.request_id, {"cost": 1.0}, work_s=2.0), t(self.now))
         if isinstance(action, act.CallGrasp) and action.close:
             return m.handle(ev.GraspAnswered(action.request_id, True), t(self.now))
@@ -82,10 +85,12 @@ def test_every_state_outcome_is_reported_by_its_spelling_and_a_state_at_work_as_
     assert [(a.state, a.outcome) for a in machine.report()] == [(TaskState.DETECT_DOOR, AttemptOutcome.UNFINISHED)]
 
 
-def test_a_pull_door_walks_to_the_doorway_tucks_the_arm_and_walks_on():
-    """footstep_planner.pull_passage: the walk through in two walks around the blocking arm's
-    tuck, each its own request; their labels name the WALK_THROUGH phase (Table I)."""
-    machine = DoorTaskMachine(MachineOptions(opening=DoorOpening.PULL))
+@pytest.mark.parametrize("opening", list(DoorOpening))
+def test_a_door_is_walked_to_the_doorway_the_arm_tucked_and_walked_on(opening):
+    """footstep_planner.pull_passage and push_passage: the walk through in two walks around the
+    tuck of the arm on the leaf, each its own request; their labels name the WALK_THROUGH phase
+    (Table I)."""
+    machine = DoorTaskMachine(MachineOptions(opening=opening))
     robot = Robot(machine)
     assert robot.run(machine.start(t(0.0))) is TaskState.DONE
     assert robot.visited[-4:] == [TaskState.TO_DOORWAY, TaskState.TUCK, TaskState.WALK_THROUGH, TaskState.DONE]
@@ -100,14 +105,44 @@ def test_a_pull_door_walks_to_the_doorway_tucks_the_arm_and_walks_on():
     assert rows["WALK_THROUGH"].runs == 1 and rows["WALK_THROUGH"].successes == 1
 
 
+@pytest.mark.parametrize("autonomy", [Autonomy.SUPERVISED, Autonomy.STEP])
+def test_a_door_without_a_doorway_walk_skips_the_tuck_and_walks_through_without_asking(autonomy):
+    """A narrow push door (footstep_planner.push_passage): the planner answers the doorway walk
+    SKIPPED; the machine goes straight to WALK_THROUGH (no tuck, nothing to approve: nothing
+    moves), and the report says the doorway was skipped and why."""
+    machine = DoorTaskMachine(MachineOptions(opening=DoorOpening.PUSH, autonomy=autonomy))
+    robot = Robot(machine, skip=frozenset({WalkGoal.DOORWAY}))
+    assert robot.run(machine.start(t(0.0))) is TaskState.DONE
+    assert robot.visited[-4:] == [TaskState.READY_TO_WALK, TaskState.TO_DOORWAY, TaskState.WALK_THROUGH,
+                                  TaskState.DONE]
+    assert not any("'doorway'" in text for text in robot.approvals)
+    assert all(r.motion != "tuck_arm" for r in robot.requests if isinstance(r, act.RequestMotion))
+    doorway = next(a for a in machine.report() if a.state is TaskState.TO_DOORWAY)
+    assert (doorway.outcome, doorway.reason, doorway.moving_s) == (AttemptOutcome.SKIPPED, "no such walk here", 0.0)
+    from door_bringup.table_one import phase_rows
+    rows = {row.phase: row for row in phase_rows([{"attempts": machine.report()}])}
+    assert rows["WALK_THROUGH"].successes == 1
+
+
+def test_a_skip_answered_for_a_state_that_cannot_be_skipped_is_a_planning_failure():
+    """Only a state with somewhere to skip to (TO_DOORWAY) may be skipped; the walk through
+    answered SKIPPED is repeated as a failed plan, and after the repeats the task fails."""
+    machine = DoorTaskMachine(MachineOptions(opening=DoorOpening.PUSH, autonomy=Autonomy.FULL, max_repeats=1))
+    robot = Robot(machine, skip=frozenset({WalkGoal.THROUGH}))
+    assert robot.run(machine.start(t(0.0))) is TaskState.FAILED
+    through = [a for a in machine.report() if a.state is TaskState.WALK_THROUGH]
+    assert [a.outcome for a in through] == [AttemptOutcome.FAILED, AttemptOutcome.FAILED]
+    assert "WALK_THROUGH cannot be" in through[0].reason
+
+
 @pytest.mark.parametrize("autonomy, expected", [
     (Autonomy.FULL, 0),
     (Autonomy.SUPERVISED, 4),  # door estimate, stand footsteps, handle turn, passage footsteps
-    (Autonomy.STEP, 7),        # every proposal of a push door (the grasp call has none)
+    (Autonomy.STEP, 7),        # every proposal of a narrow push door (the grasp call and the skip have none)
 ])
 def test_autonomy_levels_decide_which_proposals_wait(autonomy, expected):
     machine = DoorTaskMachine(MachineOptions(opening=DoorOpening.PUSH, autonomy=autonomy))
-    robot = Robot(machine)
+    robot = Robot(machine, skip=frozenset({WalkGoal.DOORWAY}))
     assert robot.run(machine.start(t(0.0))) is TaskState.DONE
     assert len(robot.approvals) == expected
     if expected:

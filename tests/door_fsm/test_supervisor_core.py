@@ -232,7 +232,9 @@ def test_a_push_door_is_walked_through_crouched_when_its_lever_meets_the_pelvis(
     stand = _walk_request(push)
     push.door.approved = ESTIMATE  # the lever at 0.95 m
     through = act.RequestFootsteps(stand.request_id + 1, WalkGoal.THROUGH)
+    doorway = act.RequestFootsteps(stand.request_id + 1, WalkGoal.DOORWAY)  # a wide door's, before the tuck
     assert push.walk_crouch(stand) == 0.0 and push.walk_crouch(through) == pytest.approx(0.06)
+    assert push.walk_crouch(doorway) == pytest.approx(0.06)
     push.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "handle_position": (1.2, -0.35, 1.05)})
     assert push.walk_crouch(through) == 0.0  # above the band
     push.door.approved = DoorEstimate(**{**ESTIMATE.__dict__, "width": 0.84})

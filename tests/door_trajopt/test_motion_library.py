@@ -186,7 +186,7 @@ def test_pulled_door_is_blocked_by_the_other_hand_when_the_first_lets_go(hinge):
             if motion in ("grasp", "release"):
                 assert world.grasp(pulling, motion == "grasp").success
                 continue
-            side = pulling.other if motion.uses_other_arm else pulling
+            side = pulling.other if motion.moves_other_arm(DoorOpening.PULL) else pulling
             setup = motion_setup(world, kinematics, estimate, side=side,
                                  door_angles=start_door_for(motion, door_angle, library.options))
             plan = library.plan(motion, setup, setup.chain.chain_of(setup.chain.body_q))
@@ -243,7 +243,7 @@ def test_the_tuck_takes_the_blocking_arm_to_the_walking_posture_with_the_torso_h
     world, kinematics, estimate = scene
     library = MotionLibrary()
     side = grasp_hand(estimate.hinge_side, DoorOpening.PULL).other
-    assert Motion.TUCK_ARM.uses_other_arm
+    assert Motion.TUCK_ARM.moves_other_arm(DoorOpening.PULL) and not Motion.TUCK_ARM.moves_other_arm(DoorOpening.PUSH)
     setup = motion_setup(world, kinematics, estimate, side=side,
                          door_angles=start_door_for(Motion.TUCK_ARM, 1.7500004, library.options))
     assert setup.start_door == (1.75, 0.0)  # a leaf on its stop reads a hair beyond it
@@ -324,6 +324,36 @@ def test_sideways_ready_to_walk_starts_from_a_guess_on_the_leaf_and_inside_the_d
         body_q, angle = chain.full(plan.result.trajectory[-1, :chain.size]), plan.final_door[0]
         library.clear_cache()
     assert plan.result.iterations <= 15
+
+
+def test_a_push_doors_tuck_takes_the_pushing_arm_to_the_walking_posture_with_the_torso_held():
+    """A wide push door's tuck (footstep_planner.push_passage): the arm that pushed the door —
+    the grasping hand, not the other — goes from ready_to_walk's pose on the leaf to the
+    walking posture; the torso (shared with the other arm) stays where the opening left it."""
+    from door_evaluation.trajopt.benchmark_motions import DOOR_WIDTH, scenarios
+    from door_trajopt.chain import ArmChain
+    from door_trajopt.motions import MotionSetup, support_polygon
+
+    kinematics = talos_kinematics()
+    scenario = next(s for s in scenarios(kinematics) if s.name == "push, sideways")
+    library, body_q, angle = MotionLibrary(), kinematics.nominal_q.copy(), 0.0
+    for motion in (*scenario.sequence, Motion.TUCK_ARM):
+        side = scenario.hand.other if motion.moves_other_arm(DoorOpening.PUSH) else scenario.hand
+        assert side is scenario.hand
+        chain = ArmChain(kinematics, side, body_q)
+        setup = MotionSetup(chain, scenario.door, DOOR_WIDTH, support_polygon(chain),
+                            start_door_for(motion, angle, library.options))
+        start = chain.chain_of(body_q)
+        plan = library.plan(motion, setup, start, Backend.SQP)
+        assert plan.succeeded, (motion, plan.result.message)
+        body_q, angle = chain.full(plan.result.trajectory[-1, :chain.size]), plan.final_door[0]
+    names = chain.joint_names
+    shared = [i for i, name in enumerate(names) if name in kinematics.profile.arm(side.other).joints]
+    own = [i for i in range(len(names)) if i not in shared]
+    assert shared and own
+    assert np.allclose(plan.path.positions[:, shared], start[shared], atol=1e-6)
+    assert np.allclose(plan.path.positions[-1, own], chain.chain_of(kinematics.walking_q)[own], atol=1e-4)
+    assert plan.path.times[-1] >= library.options.tuck_duration - 1e-9
 
 
 @pytest.mark.parametrize("hand", [Side.LEFT, Side.RIGHT])

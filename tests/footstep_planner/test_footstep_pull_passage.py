@@ -8,7 +8,6 @@ from footstep_scenes import collisions_along, door_facing_robot, in_front_of, ki
 
 from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
 from footstep_planner.astar import FootstepPlanner
-from footstep_planner.errors import RequestRefused
 from footstep_planner.footstep import Stance
 from footstep_planner.legs import plan_legs
 from footstep_planner.pull_passage import PULL_LEG_NAMES
@@ -71,10 +70,3 @@ def test_a_tuck_farther_out_than_the_turn_before_the_doorway_ends_the_walk_at_th
     start = Stance.nominal(in_front_of(door, 0.65), options.nominal_foot_separation)
     doorway = walk_problem(WalkGoal.DOORWAY, door, start, options, far)
     assert doorway.legs[-1].name == "turn sideways before the doorway"
-
-
-def test_a_doorway_walk_at_a_push_door_is_refused_naming_why() -> None:
-    options = profile_options()
-    door = door_facing_robot(DoorOpening.PUSH)
-    with pytest.raises(RequestRefused, match="pull door"):
-        walk_problem(WalkGoal.DOORWAY, door, Stance.nominal(in_front_of(door, 1.0), 0.2), options, SETTINGS)

@@ -7,11 +7,12 @@ from footstep_scenes import collisions_along, door_facing_robot, kinematic_viola
 
 from door_contract.vocabulary import DoorOpening, HingeSide, WalkGoal
 from footstep_planner.astar import FootstepPlanner
+from footstep_planner.errors import FootstepPlannerError, NoWalkForDoor
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.goals import PUSH_LINE_CLEARANCE, push_line, push_stand_pose
 from footstep_planner.legs import plan_legs
 from footstep_planner.plan import InputProblem
-from footstep_planner.push_passage import PUSH_LEG_NAMES, PushPassage
+from footstep_planner.push_passage import PUSH_DOORWAY_LEG_NAME, PUSH_LEG_NAMES, PushPassage
 from footstep_planner.requests import GoalSettings, WalkPlanners, options_for_problem, walk_problem
 
 SIDEWAYS = GoalSettings.from_parameters({"push_passage": "sideways"})
@@ -114,3 +115,52 @@ def test_a_passage_from_inside_the_margins_by_the_latch_post_is_planned_without_
     assert through.succeeded, through.reason
     assert "post" in relaxed_from
     assert through.plan is not None and kinematic_violations(through.plan, options) == []
+
+
+@pytest.mark.parametrize("hinge", list(HingeSide))
+@pytest.mark.parametrize("width", [0.90, 0.95, 1.05])
+def test_a_wide_door_is_side_stepped_to_just_past_the_plane_and_walked_on_from_there(
+        width: float, hinge: HingeSide) -> None:
+    """A door at least push_tuck_min_width wide: the doorway walk side-steps from the stand pose
+    along the side-step line to push_tuck_past m past the door plane, heading held; a walk
+    "through" from where it ended plans the passage's legs without going back to the stand pose,
+    and ends where the one-walk passage ends."""
+    options = profile_options()
+    door = door_facing_robot(DoorOpening.PUSH, hinge_side=hinge, leaf_width=width, clear_opening=width,
+                             handle_offset=0.07)
+    stand = push_stand_pose(door, options, reach=SIDEWAYS.push_side_reach, offset=SIDEWAYS.push_stand_offset)
+    doorway = walk_problem(WalkGoal.DOORWAY, door, Stance.nominal(stand, options.nominal_foot_separation), options,
+                           SIDEWAYS)
+    assert [leg.name for leg in doorway.legs] == [PUSH_DOORWAY_LEG_NAME]
+    walked = plan_legs(FootstepPlanner(doorway.world, options_for_problem(doorway, WalkGoal.DOORWAY, options)),
+                       doorway.start, doorway.legs)
+    assert walked.succeeded and walked.plan is not None, walked.reason
+    assert collisions_along(walked.plan, doorway.world, options) == []
+    assert kinematic_violations(walked.plan, options) == []
+    end = walked.plan.final_stance.body_pose
+    along, normal = door.to_door(end.x, end.y)
+    assert normal == pytest.approx(-SIDEWAYS.push_tuck_past, abs=options.goal_position_tolerance)
+    assert along == pytest.approx(push_line(door, options, SIDEWAYS.push_stand_offset),
+                                  abs=options.goal_position_tolerance)
+    assert abs(math.remainder(end.yaw - stand.yaw, 2 * math.pi)) <= options.goal_yaw_tolerance
+    onward = walk_problem(WalkGoal.THROUGH, door, walked.plan.final_stance, options, SIDEWAYS)
+    assert [leg.name for leg in onward.legs] == list(PUSH_LEG_NAMES)
+    on = plan_legs(FootstepPlanner(onward.world, options_for_problem(onward, WalkGoal.THROUGH, options)),
+                   onward.start, onward.legs)
+    assert on.succeeded and on.plan is not None, on.reason
+    assert collisions_along(on.plan, onward.world, options) == []
+
+
+@pytest.mark.parametrize("width", [0.80, 0.87])
+def test_a_narrow_door_has_no_doorway_walk_and_says_why(width: float) -> None:
+    """Narrower than push_tuck_min_width: the doorway walk is NoWalkForDoor (answered SKIPPED),
+    naming the width and the parameter; a door passed facing has none either."""
+    options = profile_options()
+    door = door_facing_robot(DoorOpening.PUSH, leaf_width=width, clear_opening=width, handle_offset=0.07)
+    start = Stance.nominal(push_stand_pose(door, options, reach=0.5, offset=0.12), options.nominal_foot_separation)
+    with pytest.raises(NoWalkForDoor, match=rf"{width:.2f} m wide.*push_tuck_min_width"):
+        walk_problem(WalkGoal.DOORWAY, door, start, options, SIDEWAYS)
+    wide = door_facing_robot(DoorOpening.PUSH, leaf_width=1.0, clear_opening=1.0, handle_offset=0.07)
+    with pytest.raises(NoWalkForDoor, match="facing"):
+        walk_problem(WalkGoal.DOORWAY, wide, start, options, GoalSettings.from_parameters({"push_passage": "facing"}))
+    assert not issubclass(NoWalkForDoor, FootstepPlannerError)  # not bad input: not REJECTED

@@ -8,13 +8,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from footstep_scenes import profile_options
 from test_footstep_proposal import _door
 
 from door_contract.payloads import FootstepFigures, FootstepRequest, OutcomeStatus, PlanningOutcome, decode, encode
 from door_contract.planner_service import Finished
 from door_contract.vocabulary import DoorOpening, Foot, WalkGoal
-from footstep_planner.errors import RequestRefused
+from footstep_planner.errors import NoWalkForDoor, RequestRefused
 from footstep_planner.requests import GoalSettings
 from footstep_planner.walk_service import Answer, WalkService
 
@@ -95,3 +96,20 @@ def test_an_outcome_carries_the_searchs_figures_and_decodes_as_it_went_out() -> 
     assert (outcome.request_id, outcome.status, outcome.footsteps) == (3, OutcomeStatus.FAILURE, FootstepFigures(1_200))
     assert outcome.motion is None and outcome.door_angle is None
     assert decode(PlanningOutcome, encode(outcome)) == outcome
+
+
+def test_a_doorway_walk_the_door_does_not_have_is_answered_skipped_and_one_it_has_is_planned() -> None:
+    """A push door narrower than push_tuck_min_width has no doorway walk: SKIPPED with the
+    planner's reason, nothing proposed, and the outcome says so on the bus; at the default
+    width threshold the same 0.9 m door's doorway walk is planned (to the side-step line first)."""
+    narrow = WalkService(profile_options(), GoalSettings(push_tuck_min_width=0.95))
+    request = _request(goal=WalkGoal.DOORWAY)
+    with pytest.raises(NoWalkForDoor) as raised:  # on the worker thread, which hands it over in a Finished
+        narrow.solve(request, narrow.snapshot(np.eye(4), None, _door()))
+    skipped = narrow.answer(Finished(request, error=raised.value), 1_000)
+    assert skipped.status is OutcomeStatus.SKIPPED and "push_tuck_min_width" in skipped.reason
+    assert not skipped.footsteps and skipped.stamp_ns == -1 and not skipped.bug
+    assert decode(PlanningOutcome, encode(skipped.outcome(7))).status is OutcomeStatus.SKIPPED
+    assert narrow.planned_stance is None
+    wide = _planned(_service(), _request(goal=WalkGoal.DOORWAY))
+    assert wide.status is OutcomeStatus.SUCCESS and wide.footsteps, wide.reason

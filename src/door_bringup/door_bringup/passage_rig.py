@@ -10,8 +10,9 @@ jitters the stand pose by up to ±2 cm and ±1° per trial: a single run of a ba
 proves little. ``--robot`` is the main job's robot option: the
 sim's robot, the kinematics the motions are planned with, and the footstep planner's limits.
 
-The walk through is the FSM's: a push door in one walk; a pull door to the doorway, the
-blocking arm's tuck, and on through (:mod:`footstep_planner.pull_passage`). ``--pull-passage``,
+The walk through is the FSM's: to the doorway, the tuck of the arm on the leaf, and on through
+(a pull door's blocking arm, :mod:`footstep_planner.pull_passage`; a wide push door's pushing
+arm, :mod:`footstep_planner.push_passage`); a narrow push door in one walk. ``--pull-passage``,
 ``--push-passage`` and ``--tuck-at`` are the footstep planner's parameters of those names, for
 studies (the default ``--push-passage sideways``: the push door opened and passed sideways, its
 back to the hinge, :mod:`footstep_planner.push_passage`; ``facing`` the earlier way). The hand is
@@ -58,6 +59,7 @@ from door_trajopt.door_model import door_model_from_estimate
 from door_trajopt.library import MotionLibrary
 from door_trajopt.motions import MotionSetup, start_door_for
 from door_trajopt.requests import grasping_hand
+from footstep_planner.errors import NoWalkForDoor
 from footstep_planner.narrow import PullPassage
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.parameters import PLANNER_PARAMETERS
@@ -273,7 +275,7 @@ def run_motion(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEsti
     """Plan ``motion`` from the measured posture, as the trajectory optimiser node does, for
     ``hand`` (the other arm's motions for the other), and execute it: (status, reason, the
     door angle the plan ends at)."""
-    side = hand.other if motion.uses_other_arm else hand
+    side = hand.other if motion.moves_other_arm(world.config.door.opening) else hand
     setup = motion_setup(world, kinematics, estimate, side, start_door_for(motion, door_angle, library.options))
     plan = library.plan(motion, setup, setup.chain.chain_of(setup.chain.body_q), Backend.SQP)
     if not plan.succeeded or plan.path is None:
@@ -284,13 +286,14 @@ def run_motion(world: DoorWorld, kinematics: RobotKinematics, estimate: DoorEsti
     return result.status.value, result.reason, float(plan.final_door[0])
 
 
-def passage_steps(opening: DoorOpening) -> tuple[WalkGoal | Motion, ...]:
-    """The FSM's WALK_THROUGH as walks and motions, read off its wiring: a pull door's walk to
-    the doorway, the tuck, the walk on (:mod:`footstep_planner.pull_passage`); a push door's
-    one walk."""
+def passage_steps(opening: DoorOpening) -> tuple[tuple[TaskState, WalkGoal | Motion], ...]:
+    """The FSM's WALK_THROUGH as its states' walks and motions, read off its wiring: the walk to
+    the doorway, the tuck, the walk on (:mod:`footstep_planner.pull_passage`,
+    :mod:`footstep_planner.push_passage`); a door without a doorway walk skips to the state
+    the wiring says (:attr:`~door_fsm.work.StateWork.skip_to`)."""
     passage = [state for state in success_sequence(opening)
                if state is TaskState.WALK_THROUGH or state.is_walk_through_substate]
-    return tuple(_walk_or_motion(STATE_WORK[state].target) for state in passage)
+    return tuple((state, _walk_or_motion(STATE_WORK[state].target)) for state in passage)
 
 
 def _walk_or_motion(target: WalkGoal | Motion | None) -> WalkGoal | Motion:
@@ -310,12 +313,22 @@ def walk_through(world: DoorWorld, estimate: DoorEstimate, kinematics: RobotKine
     settings = GoalSettings.for_robot(world.config.robot_profile, parameters)
     options = planner_options(world.config.robot_profile, parameters)
     planners, library, peaks = WalkPlanners(), MotionLibrary(), dict[str, float]()
-    for step in passage_steps(world.config.door.opening):
+    skip_to: TaskState | None = None
+    for state, step in passage_steps(world.config.door.opening):
+        if skip_to not in (None, state):
+            continue
+        skip_to = None
         if isinstance(step, Motion):
             status, reason, _ = run_motion(world, kinematics, estimate, step, library,
                                            world.door_state().hinge_angle, peaks, hand, trace)
         else:
-            status, reason = _walk(world, estimate, step, planners, options, settings, peaks, trace)
+            try:
+                status, reason = _walk(world, estimate, step, planners, options, settings, peaks, trace)
+            except NoWalkForDoor:
+                skip_to = STATE_WORK[state].skip_to
+                if skip_to is None:
+                    raise
+                continue
         if status != OutcomeStatus.SUCCESS.value:
             return (WALKED_THROUGH if step is WalkGoal.THROUGH else f"walk through: {step.value}"), status, reason, peaks
     return WALKED_THROUGH, OutcomeStatus.SUCCESS.value, "", peaks

@@ -26,9 +26,11 @@ def execution_event(outcome: ExecutionOutcome, request_id: int) -> ev.Event:
 
 
 def planning_event(answer: Proposal | PlanningOutcome) -> ev.Event:
-    """A paired proposal is ready; a bare outcome is the current request's failure."""
+    """A paired proposal is ready; a bare outcome is the current request's skip or failure."""
     if isinstance(answer, Proposal):
         return ev.ProposalReady(answer.request_id, plan_summary(answer.outcome), answer.work_s)
+    if answer.status is OutcomeStatus.SKIPPED:
+        return ev.ProposalSkipped(answer.request_id, answer.reason)
     return ev.ProposalFailed(answer.request_id, f"{answer.status.value}: {answer.reason}")
 
 

@@ -9,7 +9,7 @@ from door_contract.payloads import ProposalSummary
 from door_fsm.operator_commands import OperatorWord
 
 __all__ = ["Event", "ExecutionFinished", "GraspAnswered", "HandSlipped", "NodeLost", "OperatorSaid", "ProposalFailed",
-           "ProposalReady"]
+           "ProposalReady", "ProposalSkipped"]
 
 
 @dataclass(frozen=True)
@@ -23,6 +23,15 @@ class ProposalReady:
 
 @dataclass(frozen=True)
 class ProposalFailed:
+    request_id: int
+    reason: str
+
+
+@dataclass(frozen=True)
+class ProposalSkipped:
+    """A planner answered request ``request_id``: this door has nothing to do there (a narrow
+    push door's doorway walk), and ``reason`` says why."""
+
     request_id: int
     reason: str
 
@@ -66,5 +75,5 @@ class NodeLost:
     node_name: str
 
 
-Event = (ProposalReady | ProposalFailed | ExecutionFinished | GraspAnswered | HandSlipped
+Event = (ProposalReady | ProposalFailed | ProposalSkipped | ExecutionFinished | GraspAnswered | HandSlipped
          | OperatorSaid | NodeLost)

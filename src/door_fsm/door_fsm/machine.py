@@ -124,6 +124,8 @@ class DoorTaskMachine:
             return self._on_proposal(event, now)
         if isinstance(event, ev.ProposalFailed) and self.phase is Phase.PLANNING:
             return self._retry(f"planning failed: {event.reason}", now)
+        if isinstance(event, ev.ProposalSkipped) and self.phase is Phase.PLANNING:
+            return self._on_skip(event.reason, now)
         if isinstance(event, ev.GraspAnswered) and self.work and self.work.kind is WorkKind.GRASP:
             return self._on_grasp(event, now)
         if isinstance(event, ev.ExecutionFinished) and self.phase is Phase.EXECUTING:
@@ -237,6 +239,15 @@ class DoorTaskMachine:
             return [act.AskApproval(self._request_id, approval_text(self.state.label, self._request_id, self._active_work,
                                                                     event.summary))]
         return self._execute(now)
+
+    def _on_skip(self, reason: str, now: Instant) -> list[act.Action]:
+        """Nothing to do here for this door: on past the state's part of the task (its
+        :attr:`~door_fsm.work.StateWork.skip_to`), without approval — nothing moves. A state
+        that cannot be skipped takes it as a planning failure."""
+        if self._active_work.skip_to is None:
+            return self._retry(f"planning failed: skipped, but {self.state.label} cannot be: {reason}", now)
+        self.records[-1].summary = {"skipped": reason}
+        return self._finish(StateOutcome.SKIPPED, now, reason)
 
     def _execute(self, now: Instant) -> list[act.Action]:
         work = self._active_work

@@ -29,3 +29,4 @@ class StateOutcome(str, Enum):
     TIMEOUT = "timeout"
     ABORTED = "aborted"
     FELL = "fell"                # the robot fell: the task ends FAILED, nothing repeats
+    SKIPPED = "skipped"          # the planner has nothing to do for this door: the wiring goes past the state's part

@@ -24,14 +24,14 @@ class WiringError(DoorFsmError):
 
 
 def success_sequence(opening: DoorOpening) -> tuple[TaskState, ...]:
-    """The states a successful run visits, in order (Fig. 3; a pull door walks to the doorway
-    and tucks the blocking arm before it walks through)."""
-    push = opening is DoorOpening.PUSH
-    middle = (TaskState.PUSH,) if push else (TaskState.PULL, TaskState.BLOCK)
-    doorway = () if push else (TaskState.TO_DOORWAY, TaskState.TUCK)
+    """The states a successful run visits, in order (Fig. 3), when every planner has work for
+    each: the robot walks to the doorway and tucks the arm on the leaf before it walks through
+    (a pull door's blocking arm, a wide push door's pushing arm). A narrow push door's doorway
+    walk is SKIPPED, straight on to WALK_THROUGH (:attr:`~door_fsm.work.StateWork.skip_to`)."""
+    middle = (TaskState.PUSH,) if opening is DoorOpening.PUSH else (TaskState.PULL, TaskState.BLOCK)
     return (TaskState.DETECT_DOOR, TaskState.WALK_TO_DOOR, TaskState.MOVE_TO_HANDLE, TaskState.GRASP,
-            TaskState.TURN_HANDLE, *middle, TaskState.READY_TO_WALK, *doorway, TaskState.WALK_THROUGH,
-            TaskState.DONE)
+            TaskState.TURN_HANDLE, *middle, TaskState.READY_TO_WALK, TaskState.TO_DOORWAY, TaskState.TUCK,
+            TaskState.WALK_THROUGH, TaskState.DONE)
 
 
 def build_wiring(opening: DoorOpening) -> Wiring:
@@ -39,7 +39,10 @@ def build_wiring(opening: DoorOpening) -> Wiring:
     wiring: Wiring = {}
     for state, following in zip(sequence, sequence[1:]):
         wiring[(state, StateOutcome.SUCCEEDED)] = following
-        for outcome in STATE_WORK[state].outcomes - {StateOutcome.SUCCEEDED}:
+        work = STATE_WORK[state]
+        if work.skip_to is not None:
+            wiring[(state, StateOutcome.SKIPPED)] = work.skip_to
+        for outcome in work.outcomes - {StateOutcome.SUCCEEDED, StateOutcome.SKIPPED}:
             wiring[(state, outcome)] = (TaskState.MOVE_TO_HANDLE if outcome is StateOutcome.SLIPPED
                                         else TaskState.FAILED)
     validate_wiring(wiring, sequence)

@@ -45,6 +45,7 @@ class StateWork:
     critical: bool             # waits for approval under SUPERVISED autonomy
     holds_handle: bool = False  # the hand is on the handle: a slip can happen
     release_first: bool = False  # open the hand before planning (READY_TO_WALK)
+    skip_to: TaskState | None = None  # where a planner's SKIPPED answer goes (None: it is a failure)
 
     @property
     def subject(self) -> str:
@@ -59,6 +60,8 @@ class StateWork:
         base = {StateOutcome.SUCCEEDED, StateOutcome.FAILED, StateOutcome.TIMEOUT, StateOutcome.ABORTED}
         if self.holds_handle or self.kind is WorkKind.GRASP:
             base.add(StateOutcome.SLIPPED)
+        if self.skip_to is not None:
+            base.add(StateOutcome.SKIPPED)
         return frozenset(base)
 
 
@@ -72,7 +75,9 @@ STATE_WORK: dict[TaskState, StateWork] = {
     TaskState.PULL: StateWork(WorkKind.MOTION, Motion.PULL_DOOR, critical=False, holds_handle=True),
     TaskState.BLOCK: StateWork(WorkKind.MOTION, Motion.BLOCK_DOOR, critical=False, holds_handle=True),
     TaskState.READY_TO_WALK: StateWork(WorkKind.MOTION, Motion.READY_TO_WALK, critical=False, release_first=True),
-    TaskState.TO_DOORWAY: StateWork(WorkKind.FOOTSTEPS, WalkGoal.DOORWAY, critical=True),
+    # a door without a doorway walk (a narrow push door) has no tuck either: on to WALK_THROUGH
+    TaskState.TO_DOORWAY: StateWork(WorkKind.FOOTSTEPS, WalkGoal.DOORWAY, critical=True,
+                                    skip_to=TaskState.WALK_THROUGH),
     TaskState.TUCK: StateWork(WorkKind.MOTION, Motion.TUCK_ARM, critical=False),
     TaskState.WALK_THROUGH: StateWork(WorkKind.FOOTSTEPS, WalkGoal.THROUGH, critical=True),
 }

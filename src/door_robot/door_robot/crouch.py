@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from door_contract.vocabulary import DoorOpening, WalkGoal
 from door_robot.errors import RobotModelError
 
-__all__ = ["MAX_CROUCH", "MAX_RISE", "CrouchRules", "LowLeverCrouch", "PassageCrouch", "crouch_problem",
+__all__ = ["MAX_CROUCH", "MAX_RISE", "PASSAGE_WALKS", "CrouchRules", "LowLeverCrouch", "PassageCrouch", "crouch_problem",
            "walking_height"]
 
 MAX_CROUCH = 0.15
@@ -45,6 +45,10 @@ def crouch_problem(crouch: object) -> str:
 def walking_height(crouch: float) -> str:
     """``crouch`` in words for a log line: "0.040 m above the standing height"."""
     return f"{abs(crouch):.3f} m {'below' if crouch >= 0.0 else 'above'} the standing height"
+
+
+PASSAGE_WALKS = frozenset({WalkGoal.DOORWAY, WalkGoal.THROUGH})
+"""The walks of a passage: a push door's lever rides along the back in both."""
 
 
 @dataclass(frozen=True)
@@ -96,12 +100,13 @@ class PassageCrouch:
                                   f"{self.lever_heights}, got {self.narrow_rise_top!r}")
 
     def for_walk(self, goal: WalkGoal, opening: DoorOpening, lever_height: float, door_width: float) -> float:
-        """The crouch (m) of a walk to ``goal`` through a push door whose lever (``lever_height``,
+        """The crouch (m) of a passage walk (:data:`PASSAGE_WALKS`: a wide door's walk to the
+        doorway and the one on from there alike) through a push door whose lever (``lever_height``,
         m above the floor) is in the band: :attr:`crouch` when the leaf is at least
         :attr:`min_door_width` wide, −:attr:`narrow_rise` (a rise) when it is narrower and the
         lever at most :attr:`narrow_rise_top`; else 0 (upright)."""
         low, high = self.lever_heights
-        if goal is not WalkGoal.THROUGH or opening is not DoorOpening.PUSH or not low <= lever_height <= high:
+        if goal not in PASSAGE_WALKS or opening is not DoorOpening.PUSH or not low <= lever_height <= high:
             return 0.0
         if door_width >= self.min_door_width:
             return self.crouch

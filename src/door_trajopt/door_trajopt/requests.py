@@ -79,7 +79,7 @@ def motion_job(request: MotionRequest, snapshot: Snapshot, kinematics: RobotKine
     known = kinematics.joint_names
     body_q = kinematics.configuration({k: v for k, v in snapshot.joint_positions.items() if k in known})
     hand = request.hand or grasping_hand(estimate, snapshot.base_pose)
-    side = hand.other if motion.uses_other_arm else hand
+    side = hand.other if motion.moves_other_arm(request.opening) else hand
     chain = ArmChain(kinematics, side, body_q)
     door = door_model_from_estimate(estimate, np.linalg.inv(snapshot.base_pose),
                                     push=request.opening is DoorOpening.PUSH, lever_radius=lever_radius)

@@ -13,7 +13,7 @@ bug must instead end as a FAILURE ("internal error").
 
 from __future__ import annotations
 
-__all__ = ["FootstepPlannerError", "RequestRefused"]
+__all__ = ["FootstepPlannerError", "NoWalkForDoor", "RequestRefused"]
 
 
 class FootstepPlannerError(Exception):
@@ -31,3 +31,10 @@ class FootstepPlannerError(Exception):
 class RequestRefused(FootstepPlannerError):
     """A request that cannot be planned from the node's inputs (no odometry yet, no usable
     door estimate): answered REJECTED with this reason."""
+
+
+class NoWalkForDoor(Exception):
+    """A request for a walk this door's passage does not have (a narrow push door's doorway
+    walk: it is side-stepped through in one go): answered SKIPPED with this reason, and the FSM
+    goes on past that part of the passage. Not a :class:`FootstepPlannerError`: nothing was
+    wrong with the request."""

@@ -100,11 +100,14 @@ class FootstepPlannerNode(Node):
         self.outcome_pub.publish(String(data=encode(answer.outcome(request_id))))
         status, milliseconds = answer.status, answer.planning_time_s * 1000
         line = f"request {request_id} ({goal}): {status.value} in {milliseconds:.1f} ms"
+        answered = status in (OutcomeStatus.SUCCESS, OutcomeStatus.SKIPPED)  # a skip is no walk, not a fault
         if status is OutcomeStatus.SUCCESS:  # rclpy forbids one call site logging at two severities
             self.get_logger().info(line)
+        elif answered:
+            self.get_logger().info(f"{line}: {answer.reason}")
         else:
             self.get_logger().warning(f"{line}: {answer.reason}")
-        self.heartbeat.update(Health.OK if status is OutcomeStatus.SUCCESS else Health.WARN,
+        self.heartbeat.update(Health.OK if answered else Health.WARN,
                               f"last: {goal} {status.value}", last_planning_ms=round(milliseconds, 2))
 
     def destroy_node(self) -> None:

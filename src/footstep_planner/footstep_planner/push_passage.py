@@ -34,6 +34,19 @@ reaches the handle near full stretch; the turn slipped in 2 of 2 graph runs); wi
 compliant one the graph opened both doors tried and passed one (push, right hinge, seed 3).
 What still falls: side-stepping sways the body ±10 cm along the walk, so the hand on the leaf
 bangs it (200-700 N) while the leaf is below ~0.9 rad, and a shoulder or thigh strikes the frame.
+
+**A wide door in two walks around a tuck** (:func:`push_doorway_leg`, stop 45). The arm opens
+the door only to ~0.20 rad from the sideways stance, so the walk pushes the leaf on with the
+hand, whose contact slides from ~0.5 m to the free edge over the first side-steps; through a
+door ≥ 0.91 m wide it slid off the edge during a single support and the robot rolled and fell
+(3 of 6 walks of a 0.95 m door). So a door at least ``push_tuck_min_width`` wide is walked as a
+pull door is: :attr:`~door_contract.vocabulary.WalkGoal.DOORWAY` side-steps to ``push_tuck_past``
+m past the door plane (the hand ~0.15 m from the edge, the leaf at ~1.0-1.2 rad), the pushing
+arm tucks to the walking posture on two feet (the leaf closes onto the back), and
+:attr:`~door_contract.vocabulary.WalkGoal.THROUGH` walks on. On the passage rig (walked from
+2.5 m, the detector's error) doors of 0.91-0.95 m went through 17 of 18 times so, against 9 of
+18; narrower ones 10 of 12 against 12 of 12 (the leaf, released nearer its axis, closes onto
+the torso): they have no doorway walk (:func:`tucks_before_passing`).
 """
 
 from __future__ import annotations
@@ -48,7 +61,8 @@ from footstep_planner.narrow import SIDEWAYS
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.validation import FieldRange, check_range
 
-__all__ = ["PUSH_LEG_NAMES", "PushPassage", "push_passage_legs"]
+__all__ = ["PUSH_DOORWAY_LEG_NAME", "PUSH_LEG_NAMES", "PushPassage", "push_doorway_leg", "push_passage_legs",
+           "tucks_before_passing"]
 
 
 class PushPassage(Enum):
@@ -61,6 +75,8 @@ class PushPassage(Enum):
 
 PUSH_LEG_NAMES = ("side-step through the doorway", "step away from the leaf", "turn to face away")
 """The legs of :func:`push_passage_legs`, in order."""
+PUSH_DOORWAY_LEG_NAME = "side-step to where the arm tucks"
+"""The one leg of a wide push door's doorway walk (:func:`push_doorway_leg`)."""
 
 
 def push_passage_legs(door: DoorGeometry, options: FootstepPlannerOptions, offset: float, beyond: float,
@@ -81,3 +97,18 @@ def push_passage_legs(door: DoorGeometry, options: FootstepPlannerOptions, offse
     return (Leg(Pose2D(through_x, through_y, sideways), through, SIDEWAYS),
             Leg(Pose2D(away_x, away_y, sideways), aside),
             Leg(Pose2D(away_x, away_y, door.facing_yaw), turned))
+
+
+def tucks_before_passing(door: DoorGeometry, min_width: float) -> bool:
+    """Whether the pushing arm tucks in the doorway of ``door``: its leaf is at least
+    ``min_width`` (m) wide (the module's docstring says why only then)."""
+    return door.leaf_width >= min_width
+
+
+def push_doorway_leg(door: DoorGeometry, options: FootstepPlannerOptions, offset: float, tuck_past: float) -> Leg:
+    """The side-step along :func:`~footstep_planner.goals.push_line` (same ``offset`` as the
+    stand pose) to ``tuck_past`` m past the door plane, where the pushing arm tucks; heading held
+    sideways (:data:`~footstep_planner.narrow.SIDEWAYS`)."""
+    check_range("tuck_past", tuck_past, FieldRange(-0.3, 0.5, "m"))
+    x, y = door.to_world(push_line(door, options, offset), -tuck_past)
+    return Leg(Pose2D(x, y, towards_latch(door)), PUSH_DOORWAY_LEG_NAME, SIDEWAYS)

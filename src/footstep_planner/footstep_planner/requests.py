@@ -23,7 +23,7 @@ from door_contract.vocabulary import DoorOpening, Foot, WalkGoal
 from door_robot.profile import load_profile
 from footstep_planner.astar import FootstepPlanner
 from footstep_planner.door import DoorGeometry, wall_obstacles
-from footstep_planner.errors import RequestRefused
+from footstep_planner.errors import NoWalkForDoor, RequestRefused
 from footstep_planner.footstep import Footstep, Pose2D, Stance
 from footstep_planner.goals import push_stand_pose, stand_pose_for_opening
 from footstep_planner.legs import Leg, plan_legs
@@ -31,7 +31,7 @@ from footstep_planner.narrow import PullPassage, passage_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import InputProblem, PlanResult
 from footstep_planner.pull_passage import DOORWAY_REACHED, doorway_legs, in_doorway, onward_legs, pull_passage_legs
-from footstep_planner.push_passage import PushPassage, push_passage_legs
+from footstep_planner.push_passage import PushPassage, push_doorway_leg, push_passage_legs, tucks_before_passing
 from footstep_planner.robot_limits import options_for_walking, planner_options
 from footstep_planner.world import World
 
@@ -122,6 +122,11 @@ class GoalSettings:
     tuck_at: float = 0.45
     """A pull door's doorway walk ends this far before the door plane, where the blocking arm
     tucks (m; :mod:`~footstep_planner.pull_passage`)."""
+    push_tuck_min_width: float = 0.90
+    """Sideways: a push door at least this wide has a doorway walk, the pushing arm tucking at
+    its end (m; :mod:`~footstep_planner.push_passage`); a narrower one is walked in one go."""
+    push_tuck_past: float = 0.05
+    """Sideways: that doorway walk ends this far past the door plane (m)."""
 
     @classmethod
     def from_parameters(cls, parameters: Mapping[str, Any]) -> GoalSettings:
@@ -182,12 +187,12 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
       pose while turning, the blocking hand on the leaf, brought the hinge-side knee onto the
       leaf's free edge;
     * through a PUSH door: the leaf at :func:`passage_angle` is an obstacle; sideways
-      (``push_passage``), side-step from the stand pose, step away from the leaf and turn to
-      face away (:func:`~footstep_planner.push_passage.push_passage_legs`), wall and posts only.
+      (``push_passage``), wall and posts only: :func:`_sideways_push_problem`.
 
     A doorway narrower than the body is passed sideways
     (:func:`~footstep_planner.narrow.passage_legs`). Raises
-    :class:`~footstep_planner.errors.RequestRefused` for a doorway walk at a push door.
+    :class:`~footstep_planner.errors.NoWalkForDoor` for a doorway walk at a push door that
+    has none (passed facing, or sideways narrower than ``push_tuck_min_width``).
     """
     if goal is WalkGoal.STAND:
         legs: tuple[Leg, ...] = (Leg(stand_pose(door, options, settings), "to the stand pose"),)
@@ -201,19 +206,43 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
         elif in_doorway(start, doorway):
             legs = onward_legs(legs)
         return WalkProblem(start, legs, World(wall_obstacles(door)), door)
-    if goal is WalkGoal.DOORWAY:
-        raise RequestRefused("a doorway walk is a pull door's (the blocking arm tucks there); "
-                             "a push door is walked through in one go")
     if settings.push_passage is PushPassage.SIDEWAYS:
-        legs = push_passage_legs(door, options, settings.push_stand_offset, settings.push_side_beyond,
-                                 settings.push_step_away, settings.beyond_door)
-        stand = stand_pose(door, options, settings)
-        near, turned = DOORWAY_REACHED
-        if start.body_pose.distance_to(stand) > near or start.body_pose.yaw_difference(stand) > turned:
-            legs = (Leg(stand, "to the side-step line"), *legs)  # from anywhere but where it opened the door
-        return WalkProblem(start, legs, World(wall_obstacles(door)), door)
+        return _sideways_push_problem(goal, door, start, options, settings)
+    if goal is WalkGoal.DOORWAY:
+        raise NoWalkForDoor("a push door passed facing is walked through in one go: it has no doorway walk")
     door = door.with_angle(passage_angle(door.angle, settings))
     return WalkProblem(start, passage_legs(door, options, settings.beyond_door), World.from_door(door), door)
+
+
+def _sideways_push_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: FootstepPlannerOptions,
+                           settings: GoalSettings) -> WalkProblem:
+    """A push door passed sideways (:mod:`~footstep_planner.push_passage`): ``through``
+    side-steps from the stand pose, steps away from the leaf and turns to face away
+    (:func:`~footstep_planner.push_passage.push_passage_legs`); a door at least
+    ``push_tuck_min_width`` wide first has a ``doorway`` walk, the side-step's first part to
+    where the pushing arm tucks (:func:`~footstep_planner.push_passage.push_doorway_leg`), and
+    ``through`` walks on from there. From anywhere but the stand pose or (``through``) the
+    doorway walk's end, the walk first goes to the stand pose, on the side-step line."""
+    tucks = tucks_before_passing(door, settings.push_tuck_min_width)
+    doorway = push_doorway_leg(door, options, settings.push_stand_offset, settings.push_tuck_past)
+    if goal is WalkGoal.DOORWAY and not tucks:
+        raise NoWalkForDoor(f"a push door {door.leaf_width:.2f} m wide (< push_tuck_min_width "
+                            f"{settings.push_tuck_min_width:.2f} m) is side-stepped through in one go: "
+                            f"it has no doorway walk")
+    legs = (doorway,) if goal is WalkGoal.DOORWAY else push_passage_legs(
+        door, options, settings.push_stand_offset, settings.push_side_beyond, settings.push_step_away,
+        settings.beyond_door)
+    stand = stand_pose(door, options, settings)
+    on_line = (stand, doorway.goal) if goal is WalkGoal.THROUGH and tucks else (stand,)
+    if not any(_stands_at(start, pose) for pose in on_line):
+        legs = (Leg(stand, "to the side-step line"), *legs)
+    return WalkProblem(start, legs, World(wall_obstacles(door)), door)
+
+
+def _stands_at(start: Stance, pose: Pose2D) -> bool:
+    """Whether ``start`` stands at ``pose``, within :data:`~footstep_planner.pull_passage.DOORWAY_REACHED`."""
+    near, turned = DOORWAY_REACHED
+    return start.body_pose.distance_to(pose) < near and start.body_pose.yaw_difference(pose) < turned
 
 
 def options_for_problem(problem: WalkProblem, goal: WalkGoal,

@@ -10,7 +10,8 @@ The node hands every request to a :class:`WalkService` in two halves:
   passage is re-planned around the leaf where it now is: :func:`~footstep_planner.goals.replan_needed`).
 * :meth:`WalkService.answer`, on the executor's thread: how the request is answered.
   A dropped request is SUPERSEDED, one refused for bad input (:data:`BAD_INPUT`) REJECTED,
-  one a bug ended FAILURE ``"internal error: …"``; a search that failed is a FAILURE with the
+  one for a walk the door's passage does not have (:class:`~footstep_planner.errors.NoWalkForDoor`)
+  SKIPPED, one a bug ended FAILURE ``"internal error: …"``; a search that failed is a FAILURE with the
   planner's outcome and reason; a plan is proposed (footsteps in the /footstep_plan
   convention, their markers, a stamp strictly after the last one) and answered SUCCESS with
   its figures. Where a proposed plan leaves the feet is the start of the next request
@@ -30,7 +31,7 @@ from door_contract.payloads import DoorEstimate, FootstepFigures, FootstepReques
 from door_contract.planner_service import Finished
 from door_contract.stamps import UniqueStamps
 from door_contract.vocabulary import DoorOpening, WalkGoal
-from footstep_planner.errors import FootstepPlannerError
+from footstep_planner.errors import FootstepPlannerError, NoWalkForDoor
 from footstep_planner.footstep import Stance
 from footstep_planner.goals import replan_needed
 from footstep_planner.options import FootstepPlannerOptions
@@ -119,6 +120,8 @@ class WalkService:
 
     def answer(self, finished: Finished, now_ns: int) -> Answer:
         """How ``finished`` is answered (on the executor thread; ``now_ns``: the node's clock)."""
+        if isinstance(finished.error, NoWalkForDoor) and not finished.dropped:
+            return Answer(OutcomeStatus.SKIPPED, str(finished.error))
         settled = finished.answer_without_result(BAD_INPUT)
         if settled is not None:
             bug = repr(finished.error) if settled[0] is OutcomeStatus.FAILURE else ""

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from door_contract.vocabulary import Backend, Motion, Side
+from door_contract.vocabulary import Backend, DoorOpening, Motion, Side
 from door_robot.kinematics import RobotKinematics
 from door_robot.profile import load_profile
 from door_trajopt.chain import ArmChain
@@ -86,7 +86,8 @@ def run_sequence(kinematics: RobotKinematics, scenario: Scenario, library: Motio
     """Plan the scenario's motions in order; each starts where the previous one ended."""
     body_q, angle, results = kinematics.nominal_q.copy(), 0.0, {}
     for motion in scenario.sequence:
-        side = scenario.hand.other if motion.uses_other_arm else scenario.hand
+        opening = DoorOpening.PUSH if scenario.door.push else DoorOpening.PULL
+        side = scenario.hand.other if motion.moves_other_arm(opening) else scenario.hand
         chain = ArmChain(kinematics, side, body_q)
         setup = MotionSetup(chain, scenario.door, DOOR_WIDTH, support_polygon(chain),
                             start_door_for(motion, angle, library.options))
