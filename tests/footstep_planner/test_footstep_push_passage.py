@@ -11,6 +11,7 @@ from footstep_planner.errors import FootstepPlannerError, NoWalkForDoor
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.goals import PUSH_LINE_CLEARANCE, push_line, push_stand_pose
 from footstep_planner.legs import plan_legs
+from footstep_planner.narrow import SIDEWAYS as SIDEWAYS_PRUNING
 from footstep_planner.plan import InputProblem
 from footstep_planner.push_passage import PUSH_DOORWAY_LEG_NAME, PUSH_LEG_NAMES, PushPassage
 from footstep_planner.requests import GoalSettings, WalkPlanners, options_for_problem, walk_problem
@@ -132,17 +133,18 @@ def test_a_wide_door_is_side_stepped_to_just_past_the_plane_and_walked_on_from_t
     doorway = walk_problem(WalkGoal.DOORWAY, door, Stance.nominal(stand, options.nominal_foot_separation), options,
                            SIDEWAYS)
     assert [leg.name for leg in doorway.legs] == [PUSH_DOORWAY_LEG_NAME]
-    walked = plan_legs(FootstepPlanner(doorway.world, options_for_problem(doorway, WalkGoal.DOORWAY, options)),
-                       doorway.start, doorway.legs)
+    walked, _ = WalkPlanners().plan(doorway, options_for_problem(doorway, WalkGoal.DOORWAY, options))
     assert walked.succeeded and walked.plan is not None, walked.reason
     assert collisions_along(walked.plan, doorway.world, options) == []
     assert kinematic_violations(walked.plan, options) == []
+    line = push_line(door, options, SIDEWAYS.push_stand_offset)
+    for stance in walked.plan.stances():  # the side-step's corridor, as in the one-walk passage
+        assert abs(door.to_door(stance.body_pose.x, stance.body_pose.y)[0] - line) <= SIDEWAYS_PRUNING.corridor + 1e-9
+        assert abs(math.remainder(stance.body_pose.yaw - stand.yaw, 2 * math.pi)) <= SIDEWAYS_PRUNING.yaw_window + 1e-9
     end = walked.plan.final_stance.body_pose
     along, normal = door.to_door(end.x, end.y)
-    assert normal == pytest.approx(-SIDEWAYS.push_tuck_past, abs=options.goal_position_tolerance)
-    assert along == pytest.approx(push_line(door, options, SIDEWAYS.push_stand_offset),
-                                  abs=options.goal_position_tolerance)
-    assert abs(math.remainder(end.yaw - stand.yaw, 2 * math.pi)) <= options.goal_yaw_tolerance
+    assert (along, normal) == pytest.approx((line, -SIDEWAYS.push_tuck_past), abs=1e-6)  # snapped to the goal
+    assert end.yaw == pytest.approx(stand.yaw, abs=1e-6)
     onward = walk_problem(WalkGoal.THROUGH, door, walked.plan.final_stance, options, SIDEWAYS)
     assert [leg.name for leg in onward.legs] == list(PUSH_LEG_NAMES)
     on = plan_legs(FootstepPlanner(onward.world, options_for_problem(onward, WalkGoal.THROUGH, options)),

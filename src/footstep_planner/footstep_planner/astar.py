@@ -145,19 +145,19 @@ class FootstepPlanner:
         search = Search(self, SearchRequest(goal, bounds, search_options, pruning, origin), started)
         return search.run(start, roots)
 
-    def plan_from_within_margins(self, start: Stance, goal: Pose2D,
-                                 attempt: int = 0) -> tuple[PlanResult, str]:
+    def plan_from_within_margins(self, start: Stance, goal: Pose2D, attempt: int = 0,
+                                 pruning: LegPruning = LegPruning()) -> tuple[PlanResult, str]:
         """:meth:`plan`; when the start stance collides (a walk stopped against the door
         frame leaves the robot inside the safety margins), plan once more with zero body and
         foot margins, so the robot can step away from where it already stands.
 
         Returns the result and, when the margins were dropped, why (else "").
         """
-        result = self.plan(start, goal, attempt=attempt)
+        result = self.plan(start, goal, pruning, attempt=attempt)
         tight = self.without_margins()
         if result.input_problem is not InputProblem.START_COLLIDES or tight is None:
             return result, ""
-        return tight.plan(start, goal, attempt=attempt), result.reason
+        return tight.plan(start, goal, pruning, attempt=attempt), result.reason
 
     def without_margins(self) -> FootstepPlanner | None:
         """This planner with zero body and foot margins (None when it has none to drop): what

@@ -249,9 +249,10 @@ def options_for_problem(problem: WalkProblem, goal: WalkGoal,
                         options: FootstepPlannerOptions) -> FootstepPlannerOptions:
     """The stand pose is where the arm must reach the handle: the walk ends exactly on it
     (snap_to_goal; 4 cm and 3.8° off, within the search's goal tolerance, made a turn
-    unreachable). So do the legs of a walk through waypoints (the pull door's turns
-    sweep the door open). A plain passage keeps the search's tolerance."""
-    if goal is WalkGoal.STAND or len(problem.legs) > 1:
+    unreachable). So do a doorway walk (where the arm tucks, and the walk on starts) and the
+    legs of a walk through waypoints (the pull door's turns sweep the door open). A plain
+    passage keeps the search's tolerance."""
+    if goal in (WalkGoal.STAND, WalkGoal.DOORWAY) or len(problem.legs) > 1:
         return replace(options, snap_to_goal=True)
     return options
 
@@ -317,7 +318,8 @@ class WalkPlanners:
             self._planners[options] = FootstepPlanner(problem.world, options)
         planner = self._planners[options].with_world(problem.world)
         if len(problem.legs) == 1:
-            return planner.plan_from_within_margins(problem.start, problem.legs[0].goal, attempt)
+            leg = problem.legs[0]  # its pruning too: a wide push door's doorway side-step is one leg
+            return planner.plan_from_within_margins(problem.start, leg.goal, attempt, leg.pruning)
         result = plan_legs(planner, problem.start, problem.legs, attempt)
         tight = planner.without_margins()
         if result.input_problem is not InputProblem.START_COLLIDES or tight is None:
