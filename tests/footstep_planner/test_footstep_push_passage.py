@@ -1,6 +1,7 @@
 """A push door passed sideways, its back to the hinge (footstep_planner.push_passage, the default)."""
 
 import math
+from dataclasses import replace
 
 import pytest
 from footstep_scenes import collisions_along, door_facing_robot, kinematic_violations, profile_options
@@ -11,10 +12,11 @@ from footstep_planner.errors import FootstepPlannerError, NoWalkForDoor
 from footstep_planner.footstep import Pose2D, Stance
 from footstep_planner.goals import PUSH_LINE_CLEARANCE, push_line, push_stand_pose
 from footstep_planner.legs import plan_legs
-from footstep_planner.narrow import SIDEWAYS as SIDEWAYS_PRUNING
 from footstep_planner.plan import InputProblem
-from footstep_planner.push_passage import PUSH_DOORWAY_LEG_NAME, PUSH_LEG_NAMES, PushPassage
+from footstep_planner.proposal import contract_footsteps
+from footstep_planner.push_passage import PUSH_LEG_NAMES, DoorwayCut, PushPassage
 from footstep_planner.requests import GoalSettings, WalkPlanners, options_for_problem, walk_problem
+from footstep_planner.world import World
 
 SIDEWAYS = GoalSettings.from_parameters({"push_passage": "sideways"})
 
@@ -119,36 +121,38 @@ def test_a_passage_from_inside_the_margins_by_the_latch_post_is_planned_without_
 
 
 @pytest.mark.parametrize("hinge", list(HingeSide))
-@pytest.mark.parametrize("width", [0.90, 0.95, 1.05])
-def test_a_wide_door_is_side_stepped_to_just_past_the_plane_and_walked_on_from_there(
+@pytest.mark.parametrize("width", [0.90, 0.95, 1.0])
+def test_a_wide_doors_doorway_walk_is_the_passage_cut_at_the_plane_and_the_walk_on_starts_there(
         width: float, hinge: HingeSide) -> None:
-    """A door at least push_tuck_min_width wide: the doorway walk side-steps from the stand pose
-    along the side-step line to push_tuck_past m past the door plane, heading held; a walk
-    "through" from where it ended plans the passage's legs without going back to the stand pose,
-    and ends where the one-walk passage ends."""
+    """A door at least push_tuck_min_width wide: the doorway walk is the one-walk passage's plan
+    from the same stance, cut at its first stance at most push_tuck_at before the door plane
+    after an even number of /footstep_plan steps (the walk on starts with the left foot); a walk
+    "through" from there plans the passage's legs without going back to the stand pose."""
     options = profile_options()
     door = door_facing_robot(DoorOpening.PUSH, hinge_side=hinge, leaf_width=width, clear_opening=width,
                              handle_offset=0.07)
     stand = push_stand_pose(door, options, reach=SIDEWAYS.push_side_reach, offset=SIDEWAYS.push_stand_offset)
-    doorway = walk_problem(WalkGoal.DOORWAY, door, Stance.nominal(stand, options.nominal_foot_separation), options,
-                           SIDEWAYS)
-    assert [leg.name for leg in doorway.legs] == [PUSH_DOORWAY_LEG_NAME]
-    walked, _ = WalkPlanners().plan(doorway, options_for_problem(doorway, WalkGoal.DOORWAY, options))
-    assert walked.succeeded and walked.plan is not None, walked.reason
-    assert collisions_along(walked.plan, doorway.world, options) == []
-    assert kinematic_violations(walked.plan, options) == []
-    line = push_line(door, options, SIDEWAYS.push_stand_offset)
-    for stance in walked.plan.stances():  # the side-step's corridor, as in the one-walk passage
-        assert abs(door.to_door(stance.body_pose.x, stance.body_pose.y)[0] - line) <= SIDEWAYS_PRUNING.corridor + 1e-9
-        assert abs(math.remainder(stance.body_pose.yaw - stand.yaw, 2 * math.pi)) <= SIDEWAYS_PRUNING.yaw_window + 1e-9
-    end = walked.plan.final_stance.body_pose
-    along, normal = door.to_door(end.x, end.y)
-    assert (along, normal) == pytest.approx((line, -SIDEWAYS.push_tuck_past), abs=1e-6)  # snapped to the goal
-    assert end.yaw == pytest.approx(stand.yaw, abs=1e-6)
-    onward = walk_problem(WalkGoal.THROUGH, door, walked.plan.final_stance, options, SIDEWAYS)
+    start = Stance.nominal(stand, options.nominal_foot_separation)
+    planners = WalkPlanners()
+    plans = {}
+    for goal in (WalkGoal.THROUGH, WalkGoal.DOORWAY):
+        problem = walk_problem(goal, door, start, options, SIDEWAYS)
+        assert [leg.name for leg in problem.legs] == list(PUSH_LEG_NAMES)
+        result, _ = planners.plan(problem, options_for_problem(problem, goal, options))
+        assert result.succeeded and result.plan is not None, result.reason
+        plans[goal] = result.plan
+    whole, doorway = plans[WalkGoal.THROUGH], plans[WalkGoal.DOORWAY]
+    count = len(doorway.steps)
+    assert 0 < count < len(whole.steps) and doorway.steps == whole.steps[:count]
+    assert len(contract_footsteps(start, doorway)) % 2 == 0
+    normals = [door.to_door(s.body_pose.x, s.body_pose.y)[1] for s in whole.stances()]
+    assert normals[count - 1] <= SIDEWAYS.push_tuck_at
+    eligible = [i for i in range(count - 1) if len(contract_footsteps(start, replace(whole, steps=whole.steps[:i + 1]))) % 2 == 0]
+    assert all(normals[i] > SIDEWAYS.push_tuck_at for i in eligible)  # the first such stance
+    assert doorway.goal == doorway.final_stance.body_pose
+    onward = walk_problem(WalkGoal.THROUGH, door, doorway.final_stance, options, SIDEWAYS)
     assert [leg.name for leg in onward.legs] == list(PUSH_LEG_NAMES)
-    on = plan_legs(FootstepPlanner(onward.world, options_for_problem(onward, WalkGoal.THROUGH, options)),
-                   onward.start, onward.legs)
+    on, _ = planners.plan(onward, options_for_problem(onward, WalkGoal.THROUGH, options))
     assert on.succeeded and on.plan is not None, on.reason
     assert collisions_along(on.plan, onward.world, options) == []
 
@@ -166,3 +170,13 @@ def test_a_narrow_door_has_no_doorway_walk_and_says_why(width: float) -> None:
     with pytest.raises(NoWalkForDoor, match="facing"):
         walk_problem(WalkGoal.DOORWAY, wide, start, options, GoalSettings.from_parameters({"push_passage": "facing"}))
     assert not issubclass(NoWalkForDoor, FootstepPlannerError)  # not bad input: not REJECTED
+
+
+def test_a_doorway_cut_validates_its_distance_and_keeps_a_plan_that_never_reaches_it() -> None:
+    door = door_facing_robot(DoorOpening.PUSH, leaf_width=1.0, clear_opening=1.0, handle_offset=0.07)
+    with pytest.raises(FootstepPlannerError, match="at"):
+        DoorwayCut(door, math.nan)
+    options = profile_options()
+    start = Stance.nominal(Pose2D(0.5, 0.0, 0.0), options.nominal_foot_separation)  # 1.5 m before the plane
+    short = FootstepPlanner(World(()), options).plan(start, Pose2D(0.9, 0.0, 0.0))
+    assert short.plan is not None and DoorwayCut(door, 0.05).cut(short.plan) == short.plan

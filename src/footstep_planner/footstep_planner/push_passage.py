@@ -35,34 +35,39 @@ compliant one the graph opened both doors tried and passed one (push, right hing
 What still falls: side-stepping sways the body ±10 cm along the walk, so the hand on the leaf
 bangs it (200-700 N) while the leaf is below ~0.9 rad, and a shoulder or thigh strikes the frame.
 
-**A wide door in two walks around a tuck** (:func:`push_doorway_leg`, stop 45). The arm opens
+**A wide door in two walks around a tuck** (:class:`DoorwayCut`, stop 45). The arm opens
 the door only to ~0.20 rad from the sideways stance, so the walk pushes the leaf on with the
 hand, whose contact slides from ~0.5 m to the free edge over the first side-steps; through a
 door ≥ 0.91 m wide it slid off the edge during a single support and the robot rolled and fell
 (3 of 6 walks of a 0.95 m door). So a door at least ``push_tuck_min_width`` wide is walked as a
-pull door is: :attr:`~door_contract.vocabulary.WalkGoal.DOORWAY` side-steps to ``push_tuck_past``
-m past the door plane (the hand ~0.15 m from the edge, the leaf at ~1.0-1.2 rad), the pushing
-arm tucks to the walking posture on two feet (the leaf closes onto the back), and
-:attr:`~door_contract.vocabulary.WalkGoal.THROUGH` walks on. On the passage rig (walked from
-2.5 m, the detector's error) doors of 0.91-0.95 m went through 17 of 18 times so, against 9 of
-18; narrower ones 10 of 12 against 12 of 12 (the leaf, released nearer its axis, closes onto
-the torso): they have no doorway walk (:func:`tucks_before_passing`).
+pull door is: :attr:`~door_contract.vocabulary.WalkGoal.DOORWAY` walks the passage's plan up to
+``push_tuck_at`` m before the door plane (the hand ~0.15 m from the edge, the leaf at ~1.0-1.2 rad), the pushing arm
+tucks to the walking posture on two feet (the leaf closes onto the back), and
+:attr:`~door_contract.vocabulary.WalkGoal.THROUGH` walks on from where it stands. On the passage
+rig (walked from 2.5 m, the detector's error) doors of 0.91-0.95 m went through 17 of 18 times
+so, against 9 of 18; narrower ones 10 of 12 against 12 of 12 (the leaf, released nearer its
+axis, closes onto the torso): they have no doorway walk (:func:`tucks_before_passing`). The
+doorway walk is the whole passage's plan cut short, not a plan to a pose at the plane: such a
+plan ends in short steps that turn the feet back square to the line, under the pushing hand,
+and fell in 1-2 of 6 rig walks where the cut plan passed.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass, replace
 from enum import Enum
 
+from door_contract.vocabulary import Foot
 from footstep_planner.door import DoorGeometry
 from footstep_planner.footstep import Pose2D
 from footstep_planner.goals import push_line, towards_latch
 from footstep_planner.legs import Leg
 from footstep_planner.narrow import SIDEWAYS
 from footstep_planner.options import FootstepPlannerOptions
+from footstep_planner.plan import FootstepPlan
 from footstep_planner.validation import FieldRange, check_range
 
-__all__ = ["PUSH_DOORWAY_LEG_NAME", "PUSH_LEG_NAMES", "PushPassage", "push_doorway_leg", "push_passage_legs",
-           "tucks_before_passing"]
+__all__ = ["PUSH_LEG_NAMES", "DoorwayCut", "PushPassage", "push_passage_legs", "tucks_before_passing"]
 
 
 class PushPassage(Enum):
@@ -75,8 +80,6 @@ class PushPassage(Enum):
 
 PUSH_LEG_NAMES = ("side-step through the doorway", "step away from the leaf", "turn to face away")
 """The legs of :func:`push_passage_legs`, in order."""
-PUSH_DOORWAY_LEG_NAME = "side-step to where the arm tucks"
-"""The one leg of a wide push door's doorway walk (:func:`push_doorway_leg`)."""
 
 
 def push_passage_legs(door: DoorGeometry, options: FootstepPlannerOptions, offset: float, beyond: float,
@@ -105,10 +108,26 @@ def tucks_before_passing(door: DoorGeometry, min_width: float) -> bool:
     return door.leaf_width >= min_width
 
 
-def push_doorway_leg(door: DoorGeometry, options: FootstepPlannerOptions, offset: float, tuck_past: float) -> Leg:
-    """The side-step along :func:`~footstep_planner.goals.push_line` (same ``offset`` as the
-    stand pose) to ``tuck_past`` m past the door plane, where the pushing arm tucks; heading held
-    sideways (:data:`~footstep_planner.narrow.SIDEWAYS`)."""
-    check_range("tuck_past", tuck_past, FieldRange(-0.3, 0.5, "m"))
-    x, y = door.to_world(push_line(door, options, offset), -tuck_past)
-    return Leg(Pose2D(x, y, towards_latch(door)), PUSH_DOORWAY_LEG_NAME, SIDEWAYS)
+@dataclass(frozen=True)
+class DoorwayCut:
+    """Where a wide push door's doorway walk stops in the passage's plan: at its first stance
+    whose centre is at most ``at`` m before the door plane (negative: past it) and that ends an
+    even number of ``/footstep_plan`` steps — the walk on then starts with the left foot, as
+    every walk does, and the feet alternate across the two walks as in the one plan. (The rig
+    prototype stopped after 10 such steps: from the stand pose, the stance 1 cm before the
+    plane; the eligible stances are ~0.12 m apart.)"""
+
+    door: DoorGeometry
+    at: float
+
+    def __post_init__(self) -> None:
+        check_range("at", self.at, FieldRange(-0.5, 0.5, "m"))
+
+    def cut(self, plan: FootstepPlan) -> FootstepPlan:
+        """``plan`` up to that stance (the whole plan when none qualifies)."""
+        in_place = 1 if plan.steps and plan.steps[0].foot is Foot.RIGHT else 0  # the bus's first step
+        for count, stance in enumerate(plan.stances(), start=1):
+            body = stance.body_pose
+            if (count + in_place) % 2 == 0 and self.door.to_door(body.x, body.y)[1] <= self.at:
+                return replace(plan, goal=body, steps=plan.steps[:count])
+        return plan

@@ -31,7 +31,7 @@ from footstep_planner.narrow import PullPassage, passage_legs
 from footstep_planner.options import FootstepPlannerOptions
 from footstep_planner.plan import InputProblem, PlanResult
 from footstep_planner.pull_passage import DOORWAY_REACHED, doorway_legs, in_doorway, onward_legs, pull_passage_legs
-from footstep_planner.push_passage import PushPassage, push_doorway_leg, push_passage_legs, tucks_before_passing
+from footstep_planner.push_passage import DoorwayCut, PushPassage, push_passage_legs, tucks_before_passing
 from footstep_planner.robot_limits import options_for_walking, planner_options
 from footstep_planner.world import World
 
@@ -125,8 +125,9 @@ class GoalSettings:
     push_tuck_min_width: float = 0.90
     """Sideways: a push door at least this wide has a doorway walk, the pushing arm tucking at
     its end (m; :mod:`~footstep_planner.push_passage`); a narrower one is walked in one go."""
-    push_tuck_past: float = 0.05
-    """Sideways: that doorway walk ends this far past the door plane (m)."""
+    push_tuck_at: float = 0.05
+    """Sideways: that doorway walk is the passage's plan up to its first stance at most this
+    far before the door plane (m; :class:`~footstep_planner.push_passage.DoorwayCut`)."""
 
     @classmethod
     def from_parameters(cls, parameters: Mapping[str, Any]) -> GoalSettings:
@@ -152,6 +153,8 @@ class WalkProblem:
     world: World
     door: DoorGeometry
     """The door as planned around (for a push passage: at the passage angle)."""
+    cut: DoorwayCut | None = None
+    """Where the walk stops in the legs' plan (a wide push door's doorway walk), None: at the end."""
 
 
 def stand_pose(door: DoorGeometry, options: FootstepPlannerOptions, settings: GoalSettings) -> Pose2D:
@@ -216,33 +219,37 @@ def walk_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: Foo
 
 def _sideways_push_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, options: FootstepPlannerOptions,
                            settings: GoalSettings) -> WalkProblem:
-    """A push door passed sideways (:mod:`~footstep_planner.push_passage`): ``through``
-    side-steps from the stand pose, steps away from the leaf and turns to face away
-    (:func:`~footstep_planner.push_passage.push_passage_legs`); a door at least
-    ``push_tuck_min_width`` wide first has a ``doorway`` walk, the side-step's first part to
-    where the pushing arm tucks (:func:`~footstep_planner.push_passage.push_doorway_leg`), and
-    ``through`` walks on from there. From anywhere but the stand pose or (``through``) the
-    doorway walk's end, the walk first goes to the stand pose, on the side-step line."""
-    tucks = tucks_before_passing(door, settings.push_tuck_min_width)
-    doorway = push_doorway_leg(door, options, settings.push_stand_offset, settings.push_tuck_past)
-    if goal is WalkGoal.DOORWAY and not tucks:
+    """A push door passed sideways (:mod:`~footstep_planner.push_passage`): side-step from the
+    stand pose, step away from the leaf and turn to face away
+    (:func:`~footstep_planner.push_passage.push_passage_legs`), first to the stand pose when
+    the robot is not on the side-step line. A door at least ``push_tuck_min_width`` wide is
+    walked in two parts: ``doorway`` is that plan cut short where the pushing arm tucks
+    (:class:`~footstep_planner.push_passage.DoorwayCut`), ``through`` the plan from where it
+    stands; a narrower door has no ``doorway`` walk."""
+    if goal is WalkGoal.DOORWAY and not tucks_before_passing(door, settings.push_tuck_min_width):
         raise NoWalkForDoor(f"a push door {door.leaf_width:.2f} m wide (< push_tuck_min_width "
                             f"{settings.push_tuck_min_width:.2f} m) is side-stepped through in one go: "
                             f"it has no doorway walk")
-    legs = (doorway,) if goal is WalkGoal.DOORWAY else push_passage_legs(
-        door, options, settings.push_stand_offset, settings.push_side_beyond, settings.push_step_away,
-        settings.beyond_door)
+    legs = push_passage_legs(door, options, settings.push_stand_offset, settings.push_side_beyond,
+                             settings.push_step_away, settings.beyond_door)
     stand = stand_pose(door, options, settings)
-    on_line = (stand, doorway.goal) if goal is WalkGoal.THROUGH and tucks else (stand,)
-    if not any(_stands_at(start, pose) for pose in on_line):
-        legs = (Leg(stand, "to the side-step line"), *legs)
-    return WalkProblem(start, legs, World(wall_obstacles(door)), door)
+    if not _on_side_step_line(start, stand, legs[0].goal):
+        legs = (Leg(stand, "to the side-step line"), *legs)  # from anywhere but where it opened the door
+    cut = DoorwayCut(door, settings.push_tuck_at) if goal is WalkGoal.DOORWAY else None
+    return WalkProblem(start, legs, World(wall_obstacles(door)), door, cut)
 
 
-def _stands_at(start: Stance, pose: Pose2D) -> bool:
-    """Whether ``start`` stands at ``pose``, within :data:`~footstep_planner.pull_passage.DOORWAY_REACHED`."""
+def _on_side_step_line(start: Stance, stand: Pose2D, through: Pose2D) -> bool:
+    """Whether ``start`` stands on the side-step line from ``stand`` to ``through`` (its end),
+    heading as at ``stand``, within :data:`~footstep_planner.pull_passage.DOORWAY_REACHED`:
+    where it opened the door, or where a doorway walk left it."""
     near, turned = DOORWAY_REACHED
-    return start.body_pose.distance_to(pose) < near and start.body_pose.yaw_difference(pose) < turned
+    body = start.body_pose
+    line_x, line_y = through.x - stand.x, through.y - stand.y
+    length = math.hypot(line_x, line_y)
+    along = ((body.x - stand.x) * line_x + (body.y - stand.y) * line_y) / length
+    across = abs((body.x - stand.x) * line_y - (body.y - stand.y) * line_x) / length
+    return -near < along < length and across < near and body.yaw_difference(stand) < turned
 
 
 def options_for_problem(problem: WalkProblem, goal: WalkGoal,
@@ -313,12 +320,19 @@ class WalkPlanners:
         :meth:`~footstep_planner.astar.FootstepPlanner.plan_from_within_margins`). A sideways
         push door's measured stance after the opening once overlapped the latch post in the
         margin-inflated body box, and all three repeats of its passage failed alike. Returns
-        the result and, when the margins were dropped, why (else "")."""
+        the result and, when the margins were dropped, why (else ""); a problem with a
+        :attr:`~WalkProblem.cut` gets its plan cut there."""
+        result, relaxed_from = self._plan_legs(problem, options, attempt)
+        if problem.cut is not None and result.plan is not None:
+            result = replace(result, plan=problem.cut.cut(result.plan))
+        return result, relaxed_from
+
+    def _plan_legs(self, problem: WalkProblem, options: FootstepPlannerOptions, attempt: int) -> tuple[PlanResult, str]:
         if options not in self._planners:
             self._planners[options] = FootstepPlanner(problem.world, options)
         planner = self._planners[options].with_world(problem.world)
         if len(problem.legs) == 1:
-            leg = problem.legs[0]  # its pruning too: a wide push door's doorway side-step is one leg
+            leg = problem.legs[0]
             return planner.plan_from_within_margins(problem.start, leg.goal, attempt, leg.pruning)
         result = plan_legs(planner, problem.start, problem.legs, attempt)
         tight = planner.without_margins()

@@ -135,7 +135,7 @@ class WalkService:
         footsteps = contract_footsteps(start, result.plan)
         shapes = footstep_shapes(footsteps, self.options.foot_length, self.options.foot_width)
         stamp = self._stamps.next(now_ns)
-        length = walked_length(start, solved.problem.legs[-1].goal)
+        length = walked_length(start, result.plan.goal)  # the last leg's goal, or where a cut plan stops
         figures = FootstepFigures(result.expansions, len(result.plan.steps), round(length, 3))
         return Answer(OutcomeStatus.SUCCESS, "", result.planning_time, figures, tuple(footsteps), tuple(shapes),
                       stamp)
