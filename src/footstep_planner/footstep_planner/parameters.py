@@ -56,7 +56,7 @@ PLANNER_PARAMETERS = (
                   "two parts, the pushing arm tucked in between (footstep_planner.push_passage; on the passage rig "
                   "doors of 0.91-0.95 m went 17/18 against 9/18 in one walk, narrower ones 10/12 against 12/12); "
                   "a narrower one in one walk", FieldRange(0.5, 2.0, "m")),
-    ParameterSpec("push_tuck_at", 0.05, "sideways push: the doorway walk of a door that wide is the passage's "
+    ParameterSpec("push_tuck_at", -0.05, "sideways push: the doorway walk of a door that wide is the passage's "
                   "plan up to its first stance at most this far before the door plane (negative: past it) after "
                   "an even number of steps", FieldRange(-0.5, 0.5, "m")),
     ParameterSpec("pull_passage", "sideways", "how a blocked pull door is passed: 'sideways' side-steps "

@@ -125,7 +125,7 @@ class GoalSettings:
     push_tuck_min_width: float = 0.90
     """Sideways: a push door at least this wide has a doorway walk, the pushing arm tucking at
     its end (m; :mod:`~footstep_planner.push_passage`); a narrower one is walked in one go."""
-    push_tuck_at: float = 0.05
+    push_tuck_at: float = -0.05
     """Sideways: that doorway walk is the passage's plan up to its first stance at most this
     far before the door plane (m; :class:`~footstep_planner.push_passage.DoorwayCut`)."""
 
