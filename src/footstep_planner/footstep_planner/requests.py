@@ -233,33 +233,33 @@ def _sideways_push_problem(goal: WalkGoal, door: DoorGeometry, start: Stance, op
     legs = push_passage_legs(door, options, settings.push_stand_offset, settings.push_side_beyond,
                              settings.push_step_away, settings.beyond_door)
     stand = stand_pose(door, options, settings)
-    if not _on_side_step_line(start, stand, legs[0].goal):
+    if not _on_side_step_line(start, door, stand, legs[0].goal):
         legs = (Leg(stand, "to the side-step line"), *legs)  # from anywhere but where it opened the door
     cut = DoorwayCut(door, settings.push_tuck_at) if goal is WalkGoal.DOORWAY else None
     return WalkProblem(start, legs, World(wall_obstacles(door)), door, cut)
 
 
-def _on_side_step_line(start: Stance, stand: Pose2D, through: Pose2D) -> bool:
-    """Whether ``start`` stands on the side-step line from ``stand`` to ``through`` (its end),
-    heading as at ``stand``, within :data:`~footstep_planner.pull_passage.DOORWAY_REACHED`:
+def _on_side_step_line(start: Stance, door: DoorGeometry, stand: Pose2D, through: Pose2D) -> bool:
+    """Whether ``start`` stands on the side-step line from ``stand`` to ``through`` (its end; a
+    line across the door plane, of constant ``along`` in :meth:`~footstep_planner.door.DoorGeometry.to_door`'s
+    coordinates), heading as at ``stand``, within :data:`~footstep_planner.pull_passage.DOORWAY_REACHED`:
     where it opened the door, or where a doorway walk left it."""
     near, turned = DOORWAY_REACHED
     body = start.body_pose
-    line_x, line_y = through.x - stand.x, through.y - stand.y
-    length = math.hypot(line_x, line_y)
-    along = ((body.x - stand.x) * line_x + (body.y - stand.y) * line_y) / length
-    across = abs((body.x - stand.x) * line_y - (body.y - stand.y) * line_x) / length
-    return -near < along < length and across < near and body.yaw_difference(stand) < turned
+    along, normal = door.to_door(body.x, body.y)
+    line, stand_normal = door.to_door(stand.x, stand.y)
+    end_normal = door.to_door(through.x, through.y)[1]
+    return (abs(along - line) < near and end_normal < normal < stand_normal + near
+            and body.yaw_difference(stand) < turned)
 
 
 def options_for_problem(problem: WalkProblem, goal: WalkGoal,
                         options: FootstepPlannerOptions) -> FootstepPlannerOptions:
     """The stand pose is where the arm must reach the handle: the walk ends exactly on it
     (snap_to_goal; 4 cm and 3.8° off, within the search's goal tolerance, made a turn
-    unreachable). So do a doorway walk (where the arm tucks, and the walk on starts) and the
-    legs of a walk through waypoints (the pull door's turns sweep the door open). A plain
-    passage keeps the search's tolerance."""
-    if goal in (WalkGoal.STAND, WalkGoal.DOORWAY) or len(problem.legs) > 1:
+    unreachable). So do the legs of a walk through waypoints (the pull door's turns
+    sweep the door open). A plain passage keeps the search's tolerance."""
+    if goal is WalkGoal.STAND or len(problem.legs) > 1:
         return replace(options, snap_to_goal=True)
     return options
 
