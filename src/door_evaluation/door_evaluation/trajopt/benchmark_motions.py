@@ -85,8 +85,8 @@ def run_sequence(kinematics: RobotKinematics, scenario: Scenario, library: Motio
                  backend: Backend) -> dict[Motion, tuple[float, float, float, bool]]:
     """Plan the scenario's motions in order; each starts where the previous one ended."""
     body_q, angle, results = kinematics.nominal_q.copy(), 0.0, {}
+    opening = DoorOpening.PUSH if scenario.door.push else DoorOpening.PULL
     for motion in scenario.sequence:
-        opening = DoorOpening.PUSH if scenario.door.push else DoorOpening.PULL
         side = scenario.hand.other if motion.moves_other_arm(opening) else scenario.hand
         chain = ArmChain(kinematics, side, body_q)
         setup = MotionSetup(chain, scenario.door, DOOR_WIDTH, support_polygon(chain),
